@@ -1,0 +1,87 @@
+//! Geometry: exact-when-needed predicates, planes, and the one [`Tolerance`] type.
+//!
+//! This layer knows no topology. Every *sign* decision the library makes (is a tet
+//! positively oriented, which side of a plane is a point on) is made here, so that two
+//! callers asking the same question about the same points always get the same answer:
+//! that is what keeps neighbouring tets consistent when a cut classifies shared edges.
+//!
+//! Exact answers come from Shewchuk's adaptive predicates (the `robust` crate); functions
+//! that are *not* exact say so in their name (`*_inexact`).
+
+mod plane;
+mod predicates;
+mod tolerance;
+
+pub use plane::Plane;
+pub use predicates::{
+    Sign, orient2d, orient3d, signed_volume, signed_volume_inexact, triangle_area, triangle_normal,
+};
+pub use tolerance::Tolerance;
+
+/// The position type used throughout the library (glam's double-precision 3-vector).
+pub use glam::DVec3;
+
+/// An axis-aligned bounding box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+impl Aabb {
+    /// The empty box: growing it by any point gives that point's box.
+    pub const EMPTY: Aabb = Aabb {
+        min: DVec3::splat(f64::INFINITY),
+        max: DVec3::splat(f64::NEG_INFINITY),
+    };
+
+    /// The smallest box containing every point of `points` (EMPTY for none).
+    pub fn from_points<'a>(points: impl IntoIterator<Item = &'a DVec3>) -> Aabb {
+        let mut b = Aabb::EMPTY;
+        for p in points {
+            b.grow(*p);
+        }
+        b
+    }
+
+    pub fn grow(&mut self, p: DVec3) {
+        self.min = self.min.min(p);
+        self.max = self.max.max(p);
+    }
+
+    pub fn union(&self, other: &Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.min.x > self.max.x || self.min.y > self.max.y || self.min.z > self.max.z
+    }
+
+    pub fn extent(&self) -> DVec3 {
+        if self.is_empty() {
+            DVec3::ZERO
+        } else {
+            self.max - self.min
+        }
+    }
+
+    /// Length of the diagonal; 0 for an empty box.
+    pub fn diagonal(&self) -> f64 {
+        self.extent().length()
+    }
+
+    pub fn center(&self) -> DVec3 {
+        (self.min + self.max) * 0.5
+    }
+
+    pub fn contains(&self, p: DVec3) -> bool {
+        p.cmpge(self.min).all() && p.cmple(self.max).all()
+    }
+
+    pub fn intersects(&self, other: &Aabb) -> bool {
+        self.min.cmple(other.max).all() && other.min.cmple(self.max).all()
+    }
+}

@@ -1,0 +1,265 @@
+//! TetGen `.node` / `.ele` files.
+//!
+//! `.node`: a header `n 3 n_attributes n_boundary_markers`, then `id x y z [attributes]
+//! [marker]`. `.ele`: a header `n 4 n_attributes`, then `id a b c d [attributes]`. `#`
+//! starts a comment anywhere. Ids start at 0 or 1: the first node id in the file is the
+//! base, as TetGen itself decides. Node attributes and markers become point data
+//! (`attribute_K`, `boundary_marker`), element attributes cell data (`attribute_K`).
+
+use super::error::{IoError, IoErrorKind};
+use crate::geom::DVec3;
+use crate::mesh::{Attribute, ImportReport, MeshError, TetMesh};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The `.node` and `.ele` paths of a pair, given either of them.
+fn pair(path: &Path) -> (PathBuf, PathBuf) {
+    (path.with_extension("node"), path.with_extension("ele"))
+}
+
+/// Lines with their 1-based numbers, comments and blank lines removed.
+fn content_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    text.lines().enumerate().filter_map(|(i, l)| {
+        let l = l.split('#').next().unwrap_or("").trim();
+        (!l.is_empty()).then_some((i + 1, l))
+    })
+}
+
+fn read_text(path: &Path) -> Result<String, IoError> {
+    let bytes = std::fs::read(path).map_err(|e| IoError::new(path, e))?;
+    String::from_utf8(bytes).map_err(|e| {
+        IoError::malformed(
+            path,
+            format!(
+                "not a text file (invalid UTF-8 at byte {})",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })
+}
+
+/// Parses the next `count` whitespace-separated numbers of a line.
+fn numbers<T: std::str::FromStr>(
+    path: &Path,
+    line: usize,
+    fields: &mut std::str::SplitAsciiWhitespace<'_>,
+    count: usize,
+    what: &str,
+) -> Result<Vec<T>, IoError> {
+    (0..count)
+        .map(|k| {
+            let f = fields.next().ok_or_else(|| {
+                IoError::at_line(path, line, format!("expected {count} {what}, found {k}"))
+            })?;
+            f.parse::<T>()
+                .map_err(|_| IoError::at_line(path, line, format!("'{f}' is not a valid {what}")))
+        })
+        .collect()
+}
+
+/// Reads a TetGen `.node/.ele` pair given either path.
+pub fn read_tetgen(path: &Path) -> Result<(TetMesh, ImportReport), IoError> {
+    let (node_path, ele_path) = pair(path);
+    let node_text = read_text(&node_path)?;
+    let mut lines = content_lines(&node_text);
+    let (hl, header) = lines
+        .next()
+        .ok_or_else(|| IoError::malformed(&node_path, "empty file: no header line"))?;
+    let mut f = header.split_ascii_whitespace();
+    let h: Vec<usize> = numbers(&node_path, hl, &mut f, 1, "count")?;
+    let n = h[0];
+    let rest: Vec<usize> = f
+        .map(|x| {
+            x.parse()
+                .map_err(|_| IoError::at_line(&node_path, hl, format!("'{x}' is not a count")))
+        })
+        .collect::<Result<_, _>>()?;
+    let dim = rest.first().copied().unwrap_or(3);
+    let n_attr = rest.get(1).copied().unwrap_or(0);
+    let n_marker = rest.get(2).copied().unwrap_or(0).min(1);
+    if dim != 3 {
+        return Err(IoError::at_line(
+            &node_path,
+            hl,
+            format!("dimension {dim}, expected 3"),
+        ));
+    }
+    let mut positions = Vec::with_capacity(n);
+    let mut attrs = vec![Vec::with_capacity(n); n_attr];
+    let mut markers = Vec::with_capacity(if n_marker > 0 { n } else { 0 });
+    let mut base = 0u64;
+    for i in 0..n {
+        let (ln, l) = lines.next().ok_or_else(|| {
+            IoError::malformed(
+                &node_path,
+                format!("truncated: header announces {n} nodes, file has {i}"),
+            )
+        })?;
+        let mut f = l.split_ascii_whitespace();
+        let id: Vec<u64> = numbers(&node_path, ln, &mut f, 1, "node id")?;
+        if i == 0 {
+            base = id[0];
+            if base > 1 {
+                return Err(IoError::at_line(
+                    &node_path,
+                    ln,
+                    format!("first node id is {base}; expected 0 or 1"),
+                ));
+            }
+        }
+        if id[0] != base + i as u64 {
+            return Err(IoError::at_line(
+                &node_path,
+                ln,
+                format!(
+                    "node id {} out of sequence (expected {})",
+                    id[0],
+                    base + i as u64
+                ),
+            ));
+        }
+        let xyz: Vec<f64> = numbers(&node_path, ln, &mut f, 3, "coordinate")?;
+        let p = DVec3::new(xyz[0], xyz[1], xyz[2]);
+        if !p.is_finite() {
+            return Err(IoError::at_line(
+                &node_path,
+                ln,
+                format!("node {} has a NaN or infinite coordinate", id[0]),
+            ));
+        }
+        positions.push(p);
+        let a: Vec<f64> = numbers(&node_path, ln, &mut f, n_attr, "attribute")?;
+        for (col, v) in attrs.iter_mut().zip(a) {
+            col.push(v);
+        }
+        if n_marker > 0 {
+            markers.push(numbers::<f64>(&node_path, ln, &mut f, 1, "boundary marker")?[0]);
+        }
+    }
+
+    let ele_text = read_text(&ele_path)?;
+    let mut lines = content_lines(&ele_text);
+    let (hl, header) = lines
+        .next()
+        .ok_or_else(|| IoError::malformed(&ele_path, "empty file: no header line"))?;
+    let mut f = header.split_ascii_whitespace();
+    let m = numbers::<usize>(&ele_path, hl, &mut f, 1, "count")?[0];
+    let per: usize = f.next().map_or(Ok(4), |x| {
+        x.parse()
+            .map_err(|_| IoError::at_line(&ele_path, hl, format!("'{x}' is not a count")))
+    })?;
+    let n_eattr: usize = f.next().map_or(Ok(0), |x| {
+        x.parse()
+            .map_err(|_| IoError::at_line(&ele_path, hl, format!("'{x}' is not a count")))
+    })?;
+    if per != 4 {
+        return Err(IoError::at_line(
+            &ele_path,
+            hl,
+            format!("{per} nodes per tetrahedron; only linear (4-node) tetrahedra are supported"),
+        ));
+    }
+    let mut tets = Vec::with_capacity(m);
+    let mut eattrs = vec![Vec::with_capacity(m); n_eattr];
+    let mut tet_lines = Vec::with_capacity(m);
+    let mut ebase = None;
+    for i in 0..m {
+        let (ln, l) = lines.next().ok_or_else(|| {
+            IoError::malformed(
+                &ele_path,
+                format!("truncated: header announces {m} tetrahedra, file has {i}"),
+            )
+        })?;
+        let mut f = l.split_ascii_whitespace();
+        let id = numbers::<u64>(&ele_path, ln, &mut f, 1, "element id")?[0];
+        ebase.get_or_insert(id);
+        let v: Vec<u64> = numbers(&ele_path, ln, &mut f, 4, "node index")?;
+        let mut tet = [0u32; 4];
+        for (k, &x) in v.iter().enumerate() {
+            if x < base || x - base >= n as u64 {
+                return Err(IoError::at_line(
+                    &ele_path,
+                    ln,
+                    format!(
+                        "tetrahedron {id} uses node {x}, but nodes are numbered {base}..{}",
+                        base + n as u64 - 1
+                    ),
+                ));
+            }
+            tet[k] = (x - base) as u32;
+        }
+        tets.push(tet);
+        tet_lines.push((ln, id));
+        let a: Vec<f64> = numbers(&ele_path, ln, &mut f, n_eattr, "attribute")?;
+        for (col, x) in eattrs.iter_mut().zip(a) {
+            col.push(x);
+        }
+    }
+
+    let (mut mesh, report) = TetMesh::from_arrays(positions, tets).map_err(|e| {
+        let element = match &e {
+            MeshError::RepeatedVertex { tet, .. }
+            | MeshError::DegenerateTet { tet }
+            | MeshError::IndexOutOfRange { tet, .. } => {
+                let (ln, id) = tet_lines[*tet];
+                format!("line {ln}, tetrahedron {id}")
+            }
+            MeshError::NonFiniteCoordinate { vertex } => format!("node {}", *vertex as u64 + base),
+            _ => "mesh".to_string(),
+        };
+        IoError::new(&ele_path, IoErrorKind::InvalidMesh { element, source: e })
+    })?;
+    for (k, col) in attrs.into_iter().enumerate() {
+        mesh.point_data
+            .insert(Attribute::new(format!("attribute_{k}"), 1, col).expect("scalar column"));
+    }
+    if n_marker > 0 {
+        mesh.point_data
+            .insert(Attribute::new("boundary_marker", 1, markers).expect("scalar column"));
+    }
+    for (k, col) in eattrs.into_iter().enumerate() {
+        mesh.cell_data
+            .insert(Attribute::new(format!("attribute_{k}"), 1, col).expect("scalar column"));
+    }
+    Ok((mesh, report))
+}
+
+/// Writes `mesh` as a TetGen pair (0-based ids) next to `path` (`.node` and `.ele`).
+/// Scalar point data become node attributes and scalar cell data element attributes, in
+/// column order; vector columns cannot be expressed in TetGen files and are left out.
+pub fn write_tetgen(path: &Path, mesh: &TetMesh) -> Result<(), IoError> {
+    let (node_path, ele_path) = pair(path);
+    let scalar = |a: &&Attribute| a.components == 1;
+    let pattrs: Vec<&Attribute> = mesh.point_data.iter().filter(scalar).collect();
+    let cattrs: Vec<&Attribute> = mesh.cell_data.iter().filter(scalar).collect();
+    let write = |p: &Path, body: &dyn Fn(&mut dyn Write) -> std::io::Result<()>| {
+        let file = std::fs::File::create(p).map_err(|e| IoError::new(p, e))?;
+        let mut w = std::io::BufWriter::new(file);
+        body(&mut w)
+            .and_then(|_| w.flush())
+            .map_err(|e| IoError::new(p, e))
+    };
+    write(&node_path, &|w| {
+        writeln!(w, "{} 3 {} 0", mesh.nb_vertices(), pattrs.len())?;
+        for (i, p) in mesh.positions().iter().enumerate() {
+            // `{:?}` prints the shortest decimal that reads back to the same double.
+            write!(w, "{i} {:?} {:?} {:?}", p.x, p.y, p.z)?;
+            for a in &pattrs {
+                write!(w, " {:?}", a.values[i])?;
+            }
+            writeln!(w)?;
+        }
+        writeln!(w, "# written by mtcut {}", env!("CARGO_PKG_VERSION"))
+    })?;
+    write(&ele_path, &|w| {
+        writeln!(w, "{} 4 {}", mesh.nb_tets(), cattrs.len())?;
+        for (i, t) in mesh.tets().iter().enumerate() {
+            write!(w, "{i} {} {} {} {}", t[0], t[1], t[2], t[3])?;
+            for a in &cattrs {
+                write!(w, " {:?}", a.values[i])?;
+            }
+            writeln!(w)?;
+        }
+        writeln!(w, "# written by mtcut {}", env!("CARGO_PKG_VERSION"))
+    })
+}

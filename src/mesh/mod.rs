@@ -1,0 +1,248 @@
+//! The tetrahedral mesh: [`TetMesh`], stored as structure of arrays, with its local tables,
+//! face adjacency, validation and attribute columns.
+//!
+//! This layer owns what a single conforming tet mesh is and how to check it
+//! ([`TetMesh::validate`], DESIGN.md §5). It knows nothing of the MT or of cuts; those
+//! layers build `TetMesh`es and call `validate` in their tests.
+
+mod adjacency;
+mod attributes;
+mod ids;
+pub mod tables;
+mod validate;
+
+pub use adjacency::{BoundaryFace, FaceAdjacency};
+pub use attributes::{Attribute, Attributes};
+pub use ids::{FragmentId, Tet, TetId, VertexId};
+pub use validate::{Severity, ValidationReport, Violation, ViolationKind};
+
+use crate::geom::{Aabb, DVec3, Sign, orient3d, signed_volume_inexact};
+
+/// A tetrahedral mesh: positions, tets (four vertex ids each, positively oriented), and
+/// named per-vertex and per-tet attribute columns.
+///
+/// Invariants (checked by [`validate`](Self::validate), guaranteed for meshes made by
+/// [`from_arrays`](Self::from_arrays) and by the library's algorithms): every tet
+/// positively oriented with four distinct in-range vertices, every triangle shared by at
+/// most two tets with opposite orientations, the boundary a closed 2-manifold without
+/// hanging vertices, all coordinates finite, attribute columns as long as their elements.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TetMesh {
+    positions: Vec<DVec3>,
+    tets: Vec<Tet>,
+    /// Per-vertex attribute columns (one row per vertex).
+    pub point_data: Attributes,
+    /// Per-tet attribute columns (one row per tet).
+    pub cell_data: Attributes,
+}
+
+/// What [`TetMesh::from_arrays`] repaired or noticed while accepting a mesh.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ImportReport {
+    /// Tets given with negative orientation and re-oriented (two vertices swapped).
+    pub reoriented_tets: usize,
+    /// Vertices used by no tet: kept (their ids stay valid), reported as a warning.
+    pub unused_vertices: usize,
+}
+
+/// Why a mesh was rejected. Indices are 0-based positions in the arrays given.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    #[error("the mesh has no tetrahedra")]
+    Empty,
+    #[error("vertex {vertex} has a coordinate that is NaN or infinite")]
+    NonFiniteCoordinate { vertex: usize },
+    #[error("tet {tet} uses vertex index {index}, but the mesh has {n_vertices} vertices")]
+    IndexOutOfRange {
+        tet: usize,
+        index: u64,
+        n_vertices: usize,
+    },
+    #[error("tet {tet} uses vertex {vertex} more than once")]
+    RepeatedVertex { tet: usize, vertex: u32 },
+    #[error("tet {tet} is degenerate: its four vertices are coplanar (zero volume)")]
+    DegenerateTet { tet: usize },
+    #[error("the mesh has more than {max} vertices or tets")]
+    TooLarge { max: u32 },
+    #[error("{0}")]
+    Invalid(ValidationReport),
+}
+
+impl TetMesh {
+    /// A mesh from arrays given by a user or a file, checked: coordinates finite, indices in
+    /// range, four distinct vertices per tet, no zero-volume tet; negatively oriented tets
+    /// are re-oriented (counted in the report); then the whole mesh is validated and
+    /// rejected if any invariant fails (faces shared by three tets, non-manifold boundary,
+    /// hanging vertices...). Unused vertices are kept and reported.
+    pub fn from_arrays(
+        positions: Vec<DVec3>,
+        tets: Vec<[u32; 4]>,
+    ) -> Result<(TetMesh, ImportReport), MeshError> {
+        if tets.is_empty() {
+            return Err(MeshError::Empty);
+        }
+        if positions.len() >= u32::MAX as usize || tets.len() >= u32::MAX as usize {
+            return Err(MeshError::TooLarge { max: u32::MAX - 1 });
+        }
+        if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(MeshError::NonFiniteCoordinate { vertex });
+        }
+        let n = positions.len();
+        let mut report = ImportReport::default();
+        let mut out: Vec<Tet> = Vec::with_capacity(tets.len());
+        for (t, tet) in tets.iter().enumerate() {
+            for &i in tet {
+                if i as usize >= n {
+                    return Err(MeshError::IndexOutOfRange {
+                        tet: t,
+                        index: i as u64,
+                        n_vertices: n,
+                    });
+                }
+            }
+            for a in 0..4 {
+                for b in a + 1..4 {
+                    if tet[a] == tet[b] {
+                        return Err(MeshError::RepeatedVertex {
+                            tet: t,
+                            vertex: tet[a],
+                        });
+                    }
+                }
+            }
+            let p = tet.map(|i| positions[i as usize]);
+            let mut ids = tet.map(VertexId);
+            match orient3d(p[0], p[1], p[2], p[3]) {
+                Sign::Positive => {}
+                Sign::Negative => {
+                    ids.swap(2, 3);
+                    report.reoriented_tets += 1;
+                }
+                Sign::Zero => return Err(MeshError::DegenerateTet { tet: t }),
+            }
+            out.push(ids);
+        }
+        let mesh = TetMesh {
+            positions,
+            tets: out,
+            point_data: Attributes::new(),
+            cell_data: Attributes::new(),
+        };
+        let validation = mesh.validate();
+        if !validation.is_valid() {
+            return Err(MeshError::Invalid(validation));
+        }
+        report.unused_vertices = validation.count(ViolationKind::UnusedVertex);
+        Ok((mesh, report))
+    }
+
+    /// A mesh assembled by the library's own algorithms (extraction, cuts), whose output is
+    /// valid by construction; not re-checked here (tests call [`validate`](Self::validate)).
+    pub(crate) fn from_parts(positions: Vec<DVec3>, tets: Vec<Tet>) -> TetMesh {
+        debug_assert!(
+            tets.iter()
+                .all(|t| t.iter().all(|v| v.idx() < positions.len()))
+        );
+        TetMesh {
+            positions,
+            tets,
+            point_data: Attributes::new(),
+            cell_data: Attributes::new(),
+        }
+    }
+
+    pub fn nb_vertices(&self) -> usize {
+        self.positions.len()
+    }
+
+    pub fn nb_tets(&self) -> usize {
+        self.tets.len()
+    }
+
+    pub fn positions(&self) -> &[DVec3] {
+        &self.positions
+    }
+
+    pub fn tets(&self) -> &[Tet] {
+        &self.tets
+    }
+
+    #[inline]
+    pub fn position(&self, v: VertexId) -> DVec3 {
+        self.positions[v.idx()]
+    }
+
+    #[inline]
+    pub fn tet(&self, t: TetId) -> Tet {
+        self.tets[t.idx()]
+    }
+
+    /// Local vertex `lv` (0..4) of tet `t`.
+    #[inline]
+    pub fn tet_vertex(&self, t: TetId, lv: usize) -> VertexId {
+        self.tets[t.idx()][lv]
+    }
+
+    /// The four corner positions of tet `t`.
+    #[inline]
+    pub fn tet_positions(&self, t: TetId) -> [DVec3; 4] {
+        self.tets[t.idx()].map(|v| self.positions[v.idx()])
+    }
+
+    /// Signed volume of tet `t` (positive in a valid mesh).
+    pub fn tet_volume(&self, t: TetId) -> f64 {
+        let [a, b, c, d] = self.tet_positions(t);
+        signed_volume_inexact(a, b, c, d)
+    }
+
+    /// Total volume: the sum of the tets' signed volumes.
+    pub fn volume(&self) -> f64 {
+        (0..self.tets.len())
+            .map(|t| self.tet_volume(TetId::from_usize(t)))
+            .sum()
+    }
+
+    /// Bounding box of all vertices (used or not).
+    pub fn bbox(&self) -> Aabb {
+        Aabb::from_points(&self.positions)
+    }
+
+    /// Mutable positions: for deforming a mesh in place. Moving vertices can invert tets;
+    /// that is the caller's responsibility (validate() reports it).
+    pub fn positions_mut(&mut self) -> &mut [DVec3] {
+        &mut self.positions
+    }
+
+    /// Appends a vertex (attribute rows are the caller's: see [`Attributes::push_lerp`]).
+    pub(crate) fn push_vertex(&mut self, p: DVec3) -> VertexId {
+        self.positions.push(p);
+        VertexId::from_usize(self.positions.len() - 1)
+    }
+
+    /// Appends a tet (attribute rows are the caller's: see [`Attributes::push_copy`]).
+    pub(crate) fn push_tet(&mut self, t: Tet) -> TetId {
+        self.tets.push(t);
+        TetId::from_usize(self.tets.len() - 1)
+    }
+
+    /// Mutable tets, for algorithms that replace tets in place (cuts).
+    pub(crate) fn tets_mut(&mut self) -> &mut Vec<Tet> {
+        &mut self.tets
+    }
+
+    /// Mutable positions vector, for algorithms that append vertices in bulk.
+    pub(crate) fn positions_vec_mut(&mut self) -> &mut Vec<DVec3> {
+        &mut self.positions
+    }
+
+    /// Face adjacency of this mesh (computed, not cached).
+    pub fn adjacency(&self) -> FaceAdjacency {
+        FaceAdjacency::new(self)
+    }
+
+    /// Checks every invariant and reports every violation class with counts and first
+    /// examples (DESIGN.md §5).
+    pub fn validate(&self) -> ValidationReport {
+        validate::validate(self)
+    }
+}
