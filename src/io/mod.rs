@@ -8,7 +8,7 @@ mod error;
 mod tetgen;
 
 pub use error::{IoError, IoErrorKind};
-pub use tetgen::{read_tetgen, write_tetgen};
+pub use tetgen::{parse_tetgen, read_tetgen, write_tetgen};
 
 use crate::mesh::{ImportReport, TetMesh};
 use std::path::Path;

@@ -61,7 +61,19 @@ fn numbers<T: std::str::FromStr>(
 pub fn read_tetgen(path: &Path) -> Result<(TetMesh, ImportReport), IoError> {
     let (node_path, ele_path) = pair(path);
     let node_text = read_text(&node_path)?;
-    let mut lines = content_lines(&node_text);
+    let ele_text = read_text(&ele_path)?;
+    parse_tetgen(&node_text, &ele_text, path)
+}
+
+/// Parses the text of a TetGen pair; errors name `path` with `.node` or `.ele` (the files
+/// the texts came from, or a label for embedded data).
+pub fn parse_tetgen(
+    node_text: &str,
+    ele_text: &str,
+    path: &Path,
+) -> Result<(TetMesh, ImportReport), IoError> {
+    let (node_path, ele_path) = pair(path);
+    let mut lines = content_lines(node_text);
     let (hl, header) = lines
         .next()
         .ok_or_else(|| IoError::malformed(&node_path, "empty file: no header line"))?;
@@ -137,8 +149,7 @@ pub fn read_tetgen(path: &Path) -> Result<(TetMesh, ImportReport), IoError> {
         }
     }
 
-    let ele_text = read_text(&ele_path)?;
-    let mut lines = content_lines(&ele_text);
+    let mut lines = content_lines(ele_text);
     let (hl, header) = lines
         .next()
         .ok_or_else(|| IoError::malformed(&ele_path, "empty file: no header line"))?;
