@@ -23,9 +23,11 @@
 //!
 //! ## Layers (dependencies point down only)
 //!
-//! `geom` (predicates, planes) ← `mesh` (TetMesh, tables, adjacency, validation) ← `io`.
+//! `geom` (predicates, planes) ← `mesh` (TetMesh, tables, adjacency, validation) ← `io`, `mt`
+//! (the multiresolution model: build, extract, validate, `.mt` files).
 //! See ARCHITECTURE.md.
 
 pub mod geom;
 pub mod io;
 pub mod mesh;
+pub mod mt;
