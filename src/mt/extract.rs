@@ -102,7 +102,7 @@ impl ExtractOptions {
             }
             match f.region {
                 Region::Sphere { center, radius } => {
-                    if !center.is_finite() || !(radius >= 0.0 && radius.is_finite()) {
+                    if !(center.is_finite() && radius >= 0.0 && radius.is_finite()) {
                         return bad(format!(
                             "focus sphere at {center} with radius {radius} (finite centre, radius ≥ 0)"
                         ));

@@ -571,11 +571,11 @@ impl BoxF32 {
         }
         let down = |x: f64| {
             let y = x as f32;
-            if (y as f64) > x { y.next_down() } else { y }
+            if (y as f64) > x { step_down(y) } else { y }
         };
         let up = |x: f64| {
             let y = x as f32;
-            if (y as f64) < x { y.next_up() } else { y }
+            if (y as f64) < x { -step_down(-y) } else { y }
         };
         BoxF32 {
             min: b.min.to_array().map(down),
@@ -588,6 +588,17 @@ impl BoxF32 {
             min: DVec3::from_array(self.min.map(f64::from)),
             max: DVec3::from_array(self.max.map(f64::from)),
         }
+    }
+}
+
+/// The largest `f32` below the finite `y` (`f32::next_down`, which needs Rust 1.86).
+fn step_down(y: f32) -> f32 {
+    if y == 0.0 {
+        -f32::from_bits(1)
+    } else if y > 0.0 {
+        f32::from_bits(y.to_bits() - 1)
+    } else {
+        f32::from_bits(y.to_bits() + 1)
     }
 }
 

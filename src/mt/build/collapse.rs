@@ -68,7 +68,7 @@ pub(super) struct Candidate {
 }
 
 /// Why candidate collapses were turned down, counted for the build statistics.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Rejections {
     /// A created tet would be inverted or flat (exact orientation).
     pub orientation: usize,
@@ -78,6 +78,8 @@ pub struct Rejections {
     pub link: usize,
     /// The boundary would move beyond the tolerance, fold, or lose a feature.
     pub boundary: usize,
+    /// A value the error metric returned that is not finite and ≥ 0 (the build stops).
+    pub bad_error: Option<f64>,
 }
 
 impl Rejections {
@@ -86,6 +88,7 @@ impl Rejections {
         self.quality += o.quality;
         self.link += o.link;
         self.boundary += o.boundary;
+        self.bad_error = self.bad_error.or(o.bad_error);
     }
 }
 
@@ -378,7 +381,12 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
                 continue;
             }
             let c = self.corners(&substitute(&st.tet, v, w));
-            priority = priority.max(self.metric.tet_error(&self.sample(c, 0.0)));
+            let e = self.metric.tet_error(&self.sample(c, 0.0));
+            if !(e.is_finite() && e >= 0.0) {
+                rej.bad_error.get_or_insert(e);
+                return None;
+            }
+            priority = priority.max(e);
             if priority >= bound {
                 return None;
             }
@@ -555,10 +563,14 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
                     deviation = deviation.max(f.deviation);
                 }
             }
-            priority = priority.max(
-                self.metric
-                    .tet_error(&self.sample(self.corners(&nt), deviation)),
-            );
+            let e = self
+                .metric
+                .tet_error(&self.sample(self.corners(&nt), deviation));
+            if !(e.is_finite() && e >= 0.0) {
+                rej.bad_error.get_or_insert(e);
+                return None;
+            }
+            priority = priority.max(e);
         }
         Some(priority)
     }
@@ -584,7 +596,8 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
                 triangle_normal(pn[0], pn[1], pn[2]),
             );
             let len = nn.length() * no.length();
-            if !(len > 0.0) || nn.dot(no) < self.cos_turn * len {
+            let degenerate = len.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater);
+            if degenerate || nn.dot(no) < self.cos_turn * len {
                 return false;
             }
             // Coarse-to-original: points of the new face on a grid (its corners are

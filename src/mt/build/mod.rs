@@ -450,7 +450,10 @@ fn setup<'a, E: TetError + ?Sized>(
     let bbox = mesh.bbox();
     let mut vertex_of: Vec<u32> = (0..nv as u32).collect();
     let codes: Vec<u64> = mesh.positions().iter().map(|p| morton(*p, &bbox)).collect();
-    vertex_of.sort_unstable_by_key(|&v| (codes[v as usize], v));
+    // Ties (equal codes) are broken by the coordinates, so the order, and with it the whole
+    // build, does not depend on how the input happens to number its vertices and tets.
+    let bits = |v: u32| mesh.positions()[v as usize].to_array().map(f64::to_bits);
+    vertex_of.sort_unstable_by_key(|&v| (codes[v as usize], bits(v), v));
     let mut new_id = vec![0u32; nv];
     for (i, &v) in vertex_of.iter().enumerate() {
         new_id[v as usize] = i as u32;
@@ -461,14 +464,12 @@ fn setup<'a, E: TetError + ?Sized>(
         .collect();
     let renumber = |t: &Tet| t.map(|v| VertexId(new_id[v.idx()]));
     let mut tet_of: Vec<u32> = (0..mesh.nb_tets() as u32).collect();
-    let first = |t: u32| {
-        renumber(&mesh.tets()[t as usize])
-            .iter()
-            .map(|v| v.0)
-            .min()
-            .unwrap_or(0)
+    let key = |t: u32| {
+        let mut k = renumber(&mesh.tets()[t as usize]).map(|v| v.0);
+        k.sort_unstable();
+        k
     };
-    tet_of.sort_unstable_by_key(|&t| (first(t), t));
+    tet_of.sort_unstable_by_key(|&t| (key(t), t));
     let mut tets: Vec<Tet> = tet_of
         .iter()
         .map(|&t| renumber(&mesh.tets()[t as usize]))
@@ -524,7 +525,16 @@ fn setup<'a, E: TetError + ?Sized>(
     let sim = Simplifier {
         metric,
         scale,
-        volume: mesh.volume(),
+        // Summed in the build's own order, so the error scale does not depend on the
+        // input's numbering either.
+        volume: tets
+            .iter()
+            .filter(|t| t[3] != GHOST)
+            .map(|t| {
+                let [a, b, c, d] = t.map(|v| pos[v.idx()]);
+                crate::geom::signed_volume_inexact(a, b, c, d)
+            })
+            .sum(),
         tol: options.boundary_tolerance.distance(scale),
         cos_turn: options.feature_angle_degrees.to_radians().cos(),
         min_quality: options.min_quality,
@@ -582,6 +592,12 @@ fn simplify<E: TetError + ?Sized>(
                 .collect()
         };
         for (&v, (c, rej)) in dirty.iter().zip(results) {
+            if let Some(value) = rej.bad_error {
+                return Err(BuildError::BadErrorValue {
+                    metric: sim.metric.name().to_string(),
+                    value,
+                });
+            }
             stats.rejected.add(&rej);
             // A new evaluation supersedes every queued candidate of v.
             tickets[v as usize] = tickets[v as usize].wrapping_add(1);
@@ -671,6 +687,12 @@ fn simplify<E: TetError + ?Sized>(
         };
         let mut accepted = Vec::with_capacity(selected.len());
         for (c, (r, rej)) in selected.iter().zip(checks) {
+            if let Some(value) = rej.bad_error {
+                return Err(BuildError::BadErrorValue {
+                    metric: sim.metric.name().to_string(),
+                    value,
+                });
+            }
             stats.rejected.add(&rej);
             match r {
                 Some(k) if k.w == c.w => accepted.push(k),

@@ -260,6 +260,7 @@ mod tests {
         assert_eq!(s.distance_within(q, 1.0, &[], &mut hint), Some(0.5));
         assert_eq!(hint, 0);
         assert_eq!(s.distance_within(q, 0.4, &[], &mut hint), None);
-        assert_eq!(s.distance_within(q, 1.0, &[1], &mut u32::MAX), Some(0.5));
+        let mut none = u32::MAX;
+        assert_eq!(s.distance_within(q, 1.0, &[1], &mut none), Some(0.5));
     }
 }
