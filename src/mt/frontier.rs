@@ -5,10 +5,10 @@
 //! are reused, so a host can keep per-slot simulation state across updates (and map it
 //! with [`Frontier::tet_slots`] / [`Frontier::vertex_slots`], which give pool ids).
 //!
-//! An update touches only what changes. The fragments whose threshold may have changed —
-//! those whose box meets the old or the new focus region (found through a BVH over
+//! An update touches only what changes. The fragments whose threshold changed — found
+//! among those whose box meets the old or the new focus region (through a BVH over
 //! fragment boxes), and those whose error lies between an old and a new uniform threshold
-//! (found in an error-sorted index) — are the only places a decision can flip; from them:
+//! (in an error-sorted index) — are the only places a decision can flip; from them:
 //! * *refine*: those now wanting refinement, closed under "successor of", un-applied
 //!   coarse to fine (each swaps its ceiling for its floor);
 //! * *coarsen*: those no longer wanting it, applied fine to coarse (by level) once all the
@@ -191,59 +191,43 @@ impl Frontier {
 
     fn update_globally(&mut self, mt: &Mt, options: &ExtractOptions, stats: &mut FrontierUpdate) {
         let (target, met) = mt.refined_set(options);
-        let mut finer: Vec<u32> = Vec::new();
-        let mut coarser: Vec<u32> = Vec::new();
-        for (f, (&now, &then)) in target.iter().zip(&self.refined).enumerate() {
-            if now && !then {
-                finer.push(f as u32);
-            } else if then && !now {
-                coarser.push(f as u32);
-            }
-        }
+        let changed: Vec<u32> = (0..mt.nb_fragments() as u32)
+            .filter(|&f| target[f as usize] != self.refined[f as usize])
+            .collect();
         stats.candidates = mt.nb_fragments();
-        finer.sort_unstable_by_key(|&f| Reverse(mt.level[f as usize]));
-        for &f in &finer {
-            self.refined[f as usize] = true;
-            self.refine(mt, f as usize, stats);
-        }
-        coarser.sort_unstable_by_key(|&f| mt.level[f as usize]);
-        for &f in &coarser {
-            self.refined[f as usize] = false;
-            self.coarsen(mt, f as usize, stats);
-        }
+        self.refined = target;
+        self.apply(mt, &changed, stats);
         self.budget_met = met;
     }
 
     fn update_locally(&mut self, mt: &Mt, options: &ExtractOptions, stats: &mut FrontierUpdate) {
         let candidates = self.candidates(mt, options);
         stats.candidates = candidates.len();
+        // Fragment states first; the mesh follows once, from the net change (a fragment
+        // refined through several levels in one update never shows its middle levels).
+        let mut changed: Vec<u32> = Vec::new();
         // Refine: candidates now wanting refinement, and everything that depends on them.
         let mut stack: Vec<u32> = candidates
             .iter()
             .copied()
             .filter(|&f| !self.refined[f as usize] && mt.wants_refinement(f as usize, options))
             .collect();
-        let mut finer: Vec<u32> = Vec::new();
         for &f in &stack {
             self.refined[f as usize] = true;
-            finer.push(f);
+            changed.push(f);
         }
         while let Some(f) = stack.pop() {
             for a in mt.out_arcs(FragmentId(f)) {
                 let d = mt.arc_destroyer(a as usize).0;
                 if !self.refined[d as usize] {
                     self.refined[d as usize] = true;
-                    finer.push(d);
+                    changed.push(d);
                     stack.push(d);
                 }
             }
         }
-        finer.sort_unstable_by_key(|&f| Reverse(mt.level[f as usize]));
-        for &f in &finer {
-            self.refine(mt, f as usize, stats);
-        }
-        // Coarsen: candidates no longer wanting refinement, fine to coarse, each once all
-        // it depends on is applied; applying one may free its successors.
+        // Coarsen: candidates no longer wanting refinement, fine to coarse (by level),
+        // each once all it depends on is applied; applying one may free its successors.
         let mut heap: BinaryHeap<Reverse<(u32, u32)>> = candidates
             .iter()
             .copied()
@@ -266,12 +250,77 @@ impl Frontier {
                 continue;
             }
             self.refined[fu] = false;
-            self.coarsen(mt, fu, stats);
+            changed.push(f);
             for a in mt.out_arcs(FragmentId(f)) {
                 let d = mt.arc_destroyer(a as usize);
                 if self.refined[d.idx()] {
                     heap.push(Reverse((mt.level[d.idx()], d.0)));
                 }
+            }
+        }
+        self.apply(mt, &changed, stats);
+    }
+
+    /// Brings the mesh in line with the fragment states after the fragments in `changed`
+    /// flipped (each listed once per flip). An arc is in the frontier iff its creator is
+    /// applied and its destroyer refined; only arcs touching a fragment whose state
+    /// differs from before the update can have changed, and each is visited once.
+    fn apply(&mut self, mt: &Mt, changed: &[u32], stats: &mut FrontierUpdate) {
+        // Net flips: a fragment listed an even number of times is back where it was.
+        let mut flipped: Vec<u32> = Vec::with_capacity(changed.len());
+        for &f in changed {
+            self.mark[f as usize] = !self.mark[f as usize];
+        }
+        for &f in changed {
+            if self.mark[f as usize] {
+                flipped.push(f);
+                self.mark[f as usize] = false;
+            }
+        }
+        for &f in &flipped {
+            self.mark[f as usize] = true;
+        }
+        let before = |s: &Self, x: FragmentId| s.refined[x.idx()] != s.mark[x.idx()];
+        let mut added: Vec<u32> = Vec::new();
+        let mut removed: Vec<u32> = Vec::new();
+        for &f in &flipped {
+            if self.refined[f as usize] {
+                stats.refined += 1;
+            } else {
+                stats.coarsened += 1;
+            }
+            let fid = FragmentId(f);
+            let outs = mt.out_arcs(fid).into_iter();
+            // An arc between two flipped fragments is visited from its creator only.
+            let ins = mt
+                .in_arcs(fid)
+                .into_iter()
+                .filter(|&a| !self.mark[mt.arc_creator(a as usize).idx()]);
+            for a in outs.chain(ins) {
+                let (c, d) = (mt.arc_creator(a as usize), mt.arc_destroyer(a as usize));
+                let was = !before(self, c) && before(self, d);
+                let now = !self.refined[c.idx()] && self.refined[d.idx()];
+                if now && !was {
+                    added.push(a);
+                } else if was && !now {
+                    removed.push(a);
+                }
+            }
+        }
+        for &f in &flipped {
+            self.mark[f as usize] = false;
+        }
+        // Additions first, so a vertex shared by an outgoing and an incoming tet keeps its
+        // slot.
+        for &a in &added {
+            let c = mt.arc_creator(a as usize);
+            for t in mt.arc_tets(a as usize) {
+                stats.tets_added += usize::from(self.add_tet(mt, TetId::from_usize(t), c));
+            }
+        }
+        for &a in &removed {
+            for t in mt.arc_tets(a as usize) {
+                stats.tets_removed += usize::from(self.remove_tet(mt, TetId::from_usize(t)));
             }
         }
     }
@@ -306,42 +355,22 @@ impl Frontier {
             }
         }
         if old.focus != new.focus {
+            // Only fragments whose threshold differs: where the old and new regions
+            // overlap with the same focus threshold, nothing changes.
             let bvh = self.bvh.get_or_insert_with(|| FragmentBvh::new(mt));
             for focus in [old.focus, new.focus].into_iter().flatten() {
-                bvh.for_each_in(mt, &focus.region, |f| add(f.0, &mut out));
+                bvh.for_each_in(mt, &focus.region, |f| {
+                    let b = mt.fragment_bbox(f);
+                    if old.tau(&b) != new.tau(&b) {
+                        add(f.0, &mut out)
+                    }
+                });
             }
         }
         for &f in &out {
             self.mark[f as usize] = false;
         }
         out
-    }
-
-    /// Un-applies `f`: its floor replaces its ceiling.
-    fn refine(&mut self, mt: &Mt, f: usize, stats: &mut FrontierUpdate) {
-        let fid = FragmentId::from_usize(f);
-        stats.refined += 1;
-        for a in mt.in_arcs(fid) {
-            let c = mt.arc_creator(a as usize);
-            for t in mt.arc_tets(a as usize) {
-                stats.tets_added += usize::from(self.add_tet(mt, TetId::from_usize(t), c));
-            }
-        }
-        for t in mt.created_tets(fid) {
-            stats.tets_removed += usize::from(self.remove_tet(mt, t));
-        }
-    }
-
-    /// Applies `f`: its ceiling replaces its floor.
-    fn coarsen(&mut self, mt: &Mt, f: usize, stats: &mut FrontierUpdate) {
-        let fid = FragmentId::from_usize(f);
-        stats.coarsened += 1;
-        for t in mt.created_tets(fid) {
-            stats.tets_added += usize::from(self.add_tet(mt, t, fid));
-        }
-        for t in mt.destroyed_tets(fid) {
-            stats.tets_removed += usize::from(self.remove_tet(mt, t));
-        }
     }
 
     /// Puts pool tet `t` (created by `creator`) in the mesh; ghosts are not meshed.

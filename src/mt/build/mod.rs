@@ -763,9 +763,10 @@ fn freeze<E: TetError + ?Sized>(
     info: MtInfo,
 ) -> Result<Mt, BuildError> {
     let Simplifier {
+        pos,
         tets,
         alive,
-        creator,
+        mut creator,
         mut destroyer,
         source,
         raw_error,
@@ -778,6 +779,54 @@ fn freeze<E: TetError + ?Sized>(
             destroyer[t] = drain;
         }
     }
+    // Errors grow along the DAG: a fragment's error is at least that of every fragment that
+    // created part of its floor. Execution order is a topological order (a collapse
+    // consumes only tets made before it), so one pass over the floors in that order does.
+    let floors = crate::mt::csr::Csr::from_pairs(
+        nf,
+        (0..tets.len() as u32).map(|t| (destroyer[t as usize], t)),
+    );
+    let mut error = raw_error;
+    error.push(f64::INFINITY);
+    for f in 1..nf - 1 {
+        let m = floors
+            .row(f)
+            .into_iter()
+            .map(|t| error[creator[t as usize] as usize])
+            .fold(error[f], f64::max);
+        error[f] = m;
+    }
+    // Fragments renumbered along a Morton curve of their box centres (root first, drain
+    // last): fragments near in space are near in memory, and so, through the pool order
+    // below, are their arcs and tets, which is what incremental extraction and cuts walk.
+    let mut boxes = vec![crate::geom::Aabb::EMPTY; nf];
+    for (t, tet) in tets.iter().enumerate() {
+        for f in [creator[t], destroyer[t]] {
+            for v in tet.iter().filter(|v| **v != GHOST) {
+                boxes[f as usize].grow(pos[v.idx()]);
+            }
+        }
+    }
+    let scale = crate::geom::Aabb::from_points(&pos);
+    let code = |f: usize| -> u64 {
+        if f == 0 {
+            0
+        } else if f == nf - 1 || boxes[f].is_empty() {
+            u64::MAX
+        } else {
+            morton(boxes[f].center(), &scale)
+        }
+    };
+    let mut by_space: Vec<u32> = (0..nf as u32).collect();
+    by_space.sort_unstable_by_key(|&f| (f as usize == nf - 1, code(f as usize), f));
+    let mut new_id = vec![0u32; nf];
+    for (k, &f) in by_space.iter().enumerate() {
+        new_id[f as usize] = k as u32;
+    }
+    for c in creator.iter_mut().chain(destroyer.iter_mut()) {
+        *c = new_id[*c as usize];
+    }
+    let error: Vec<f64> = by_space.iter().map(|&f| error[f as usize]).collect();
     let mut order: Vec<u32> = (0..tets.len() as u32).collect();
     order.par_sort_unstable_by_key(|&t| (creator[t as usize], destroyer[t as usize], t));
     let vertex_of = &renumbering.vertex_of;
@@ -809,22 +858,6 @@ fn freeze<E: TetError + ?Sized>(
         }
     }
     arc_start.push(order.len() as u32);
-    // Errors grow along the DAG: a fragment's error is at least that of every fragment that
-    // created part of its floor. Fragment ids are a topological order here (a collapse
-    // consumes only tets made before it).
-    let mut into: Vec<Vec<u32>> = vec![Vec::new(); nf];
-    for (a, d) in arc_destroyer.iter().enumerate() {
-        into[d.idx()].push(arc_creator[a].0);
-    }
-    let mut error = raw_error;
-    error.push(f64::INFINITY);
-    for f in 1..nf - 1 {
-        let m = into[f]
-            .iter()
-            .map(|&c| error[c as usize])
-            .fold(error[f], f64::max);
-        error[f] = m;
-    }
     let mut kind = vec![FragmentKind::Collapse; nf];
     kind[0] = FragmentKind::Root;
     kind[nf - 1] = FragmentKind::Drain;
