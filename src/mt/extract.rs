@@ -311,13 +311,34 @@ impl Mt {
     /// The non-ghost tets of the frontier of `refined` (arcs from applied fragments into
     /// refined ones), in pool order, with their creators.
     pub(crate) fn frontier_tets(&self, refined: &[bool]) -> (Vec<TetId>, Vec<FragmentId>) {
-        let arcs: Vec<u32> = (0..self.nb_arcs() as u32)
+        let in_frontier = |a: u32| {
+            let a = a as usize;
+            !refined[self.arc_creator[a].idx()] && refined[self.arc_destroyer[a].idx()]
+        };
+        // Every frontier arc enters a refined fragment: when the refined fragments have
+        // few arcs in (coarse extractions), look there instead of at every arc.
+        let refined_list: Vec<u32> = (0..refined.len() as u32)
             .into_par_iter()
-            .filter(|&a| {
-                let a = a as usize;
-                !refined[self.arc_creator[a].idx()] && refined[self.arc_destroyer[a].idx()]
-            })
+            .filter(|&f| refined[f as usize])
             .collect();
+        let arcs_in: usize = refined_list
+            .iter()
+            .map(|&f| self.in_arcs.row(f as usize).len())
+            .sum();
+        let arcs: Vec<u32> = if arcs_in * 4 < self.nb_arcs() {
+            let mut v: Vec<u32> = refined_list
+                .iter()
+                .flat_map(|&f| self.in_arcs.row(f as usize))
+                .filter(|&a| in_frontier(a))
+                .collect();
+            v.sort_unstable();
+            v
+        } else {
+            (0..self.nb_arcs() as u32)
+                .into_par_iter()
+                .filter(|&a| in_frontier(a))
+                .collect()
+        };
         let mut tets = Vec::new();
         let mut creators = Vec::new();
         for &a in &arcs {

@@ -179,8 +179,8 @@ pub(super) struct Simplifier<'a, E: TetError + ?Sized> {
 
     // The recorded MT: every tet ever made, creation order.
     pub tets: Vec<Tet>,
-    pub alive: Vec<bool>,
     pub creator: Vec<u32>,
+    /// The fragment that destroyed each tet; `u32::MAX` while it is in the current mesh.
     pub destroyer: Vec<u32>,
     /// The floor tet each created tet replaces (`u32::MAX` for the root's tets): cell data
     /// is inherited along it.
@@ -710,7 +710,6 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
                     changed.push(x.0);
                 }
             }
-            self.alive[t as usize] = false;
             self.destroyer[t as usize] = fragment;
             if !is_ghost(&tet) && contains(&tet, w) {
                 self.live_real -= 1;
@@ -739,7 +738,6 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
             let nt = substitute(&tet, v, w);
             let id = self.tets.len() as u32;
             self.tets.push(nt);
-            self.alive.push(true);
             self.creator.push(fragment);
             self.destroyer.push(u32::MAX);
             self.source.push(t);

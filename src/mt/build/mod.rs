@@ -463,13 +463,17 @@ fn setup<'a, E: TetError + ?Sized>(
         .map(|&v| mesh.positions()[v as usize])
         .collect();
     let renumber = |t: &Tet| t.map(|v| VertexId(new_id[v.idx()]));
-    let mut tet_of: Vec<u32> = (0..mesh.nb_tets() as u32).collect();
-    let key = |t: u32| {
-        let mut k = renumber(&mesh.tets()[t as usize]).map(|v| v.0);
-        k.sort_unstable();
-        k
-    };
-    tet_of.sort_unstable_by_key(|&t| (key(t), t));
+    let tet_of: Vec<u32> = (0..mesh.nb_tets() as u32).collect();
+    let mut keyed: Vec<([u32; 4], u32)> = tet_of
+        .iter()
+        .map(|&t| {
+            let mut k = renumber(&mesh.tets()[t as usize]).map(|v| v.0);
+            k.sort_unstable();
+            (k, t)
+        })
+        .collect();
+    keyed.par_sort_unstable();
+    let tet_of: Vec<u32> = keyed.into_iter().map(|(_, t)| t).collect();
     let mut tets: Vec<Tet> = tet_of
         .iter()
         .map(|&t| renumber(&mesh.tets()[t as usize]))
@@ -540,7 +544,6 @@ fn setup<'a, E: TetError + ?Sized>(
         min_quality: options.min_quality,
         surface: Surface::new(&pos, &faces),
         pos,
-        alive: vec![true; n],
         creator: vec![0; n],
         destroyer: vec![u32::MAX; n],
         source: vec![u32::MAX; n],
@@ -578,7 +581,9 @@ fn simplify<E: TetError + ?Sized>(
     let mut fraction = 0.0f64;
     let mut removed = 0usize;
     loop {
-        // Re-evaluate every vertex whose star changed, on all cores.
+        // Re-evaluate every vertex whose star changed, on all cores, in vertex order (the
+        // build's numbering is spatial, so neighbours share cache lines).
+        dirty.sort_unstable();
         let results: Vec<(Option<Candidate>, Rejections)> = {
             let s: &Simplifier<'_, E> = sim;
             dirty
@@ -765,7 +770,6 @@ fn freeze<E: TetError + ?Sized>(
     let Simplifier {
         pos,
         tets,
-        alive,
         mut creator,
         mut destroyer,
         source,
@@ -774,9 +778,9 @@ fn freeze<E: TetError + ?Sized>(
     } = sim;
     let drain = raw_error.len() as u32;
     let nf = raw_error.len() + 1;
-    for (t, a) in alive.iter().enumerate() {
-        if *a {
-            destroyer[t] = drain;
+    for d in destroyer.iter_mut() {
+        if *d == u32::MAX {
+            *d = drain;
         }
     }
     // Errors grow along the DAG: a fragment's error is at least that of every fragment that
