@@ -412,3 +412,72 @@ fn root_and_drain_close_the_dag() {
         assert_eq!(mt.tet_creator(t), root);
     }
 }
+
+/// An `n³` grid of unit cubes, each split into six tets around its main diagonal (Kuhn).
+fn kuhn_cube(n: usize) -> TetMesh {
+    let id = |i: usize, j: usize, k: usize| (i + (n + 1) * (j + (n + 1) * k)) as u32;
+    let mut positions = Vec::new();
+    for k in 0..=n {
+        for j in 0..=n {
+            for i in 0..=n {
+                positions.push(DVec3::new(i as f64, j as f64, k as f64));
+            }
+        }
+    }
+    let mut tets = Vec::new();
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                let c = |b: usize| id(i + (b & 1), j + ((b >> 1) & 1), k + ((b >> 2) & 1));
+                // The six paths from corner 0 to corner 7 along the axes.
+                for (a, b) in [(1, 3), (1, 5), (2, 3), (2, 6), (4, 5), (4, 6)] {
+                    tets.push([c(0), c(a), c(b), c(7)]);
+                }
+            }
+        }
+    }
+    TetMesh::from_arrays(positions, tets).unwrap().0
+}
+
+#[test]
+fn a_subdivided_cube_coarsens_to_a_few_tets_with_its_volume() {
+    let input = kuhn_cube(4);
+    let (mt, stats) = Mt::build(&input, &BuildOptions::DEFAULT).unwrap();
+    let report = mt.validate();
+    assert!(report.is_valid(), "{report}");
+    let coarse = mt.extract(&ExtractOptions::COARSEST).unwrap();
+    assert!(coarse.mesh.validate().is_valid());
+    // Flat faces and straight edges: the boundary does not move at all, so neither does
+    // the volume, and only the eight corners need to stay.
+    assert!(
+        (coarse.mesh.volume() - 64.0).abs() < 1e-9,
+        "{}",
+        coarse.mesh.volume()
+    );
+    assert_eq!(boundary_deviation(&input, &coarse.mesh, 4), (0.0, 0.0));
+    eprintln!(
+        "cube: {} tets → {} ({})",
+        input.nb_tets(),
+        coarse.stats.tets,
+        stats.to_json()
+    );
+    assert_eq!(coarse.stats.vertices, 8, "only the corners need to stay");
+    assert!(coarse.stats.tets <= 6, "{} tets left", coarse.stats.tets);
+}
+
+#[test]
+fn a_single_tet_is_its_own_coarsest_mesh() {
+    let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    let (input, _) = TetMesh::from_arrays(p, vec![[0, 1, 2, 3]]).unwrap();
+    let (mt, stats) = Mt::build(&input, &BuildOptions::DEFAULT).unwrap();
+    assert!(mt.validate().is_valid());
+    assert_eq!(stats.collapses, 0);
+    assert_eq!(mt.nb_fragments(), 2);
+    assert_eq!(
+        mt.extract(&ExtractOptions::COARSEST)
+            .unwrap()
+            .mesh
+            .nb_tets(),
+        1
+    );
+}

@@ -148,6 +148,21 @@ fn same_mesh(a: &Extraction, b: &Extraction) -> bool {
     a.mesh == b.mesh && a.tet_ids == b.tet_ids && a.vertex_ids == b.vertex_ids
 }
 
+/// Reduces a failing sequence of requests to one update: a frontier made from scratch for
+/// an earlier request, updated once to the last. Falls back to the last two requests.
+fn minimal_failing_pair(mt: &Mt, history: &[ExtractOptions]) -> (ExtractOptions, ExtractOptions) {
+    let last = history[history.len() - 1];
+    let expect = mt.extract(&last).unwrap();
+    for from in &history[..history.len() - 1] {
+        let mut f = Frontier::new(mt, from).unwrap();
+        f.update(mt, &last).unwrap();
+        if !same_mesh(&f.to_extraction(mt), &expect) {
+            return (*from, last);
+        }
+    }
+    (history[history.len().saturating_sub(2)], last)
+}
+
 /// A random request: uniform threshold from the error distribution, often a focus
 /// (sphere or box) somewhere in the bounding box with a finer threshold.
 fn random_request(rng: &mut Rng, bbox: &Aabb, e: &[f64]) -> ExtractOptions {
@@ -222,13 +237,15 @@ fn incremental_updates_equal_extraction_from_scratch() {
                 let stats = frontier.update(mt, &request).unwrap();
                 let scratch = mt.extract(&request).unwrap();
                 let incremental = frontier.to_extraction(mt);
-                assert!(
-                    same_mesh(&incremental, &scratch),
-                    "{name}, seed {seed:#x}, step {step}: incremental ({} tets) differs from \
-                     scratch ({} tets) after {stats:?}; requests so far: {history:#?}",
-                    incremental.stats.tets,
-                    scratch.stats.tets
-                );
+                if !same_mesh(&incremental, &scratch) {
+                    let (from, to) = minimal_failing_pair(mt, &history);
+                    panic!(
+                        "{name}, seed {seed:#x}, step {step}: incremental ({} tets) differs from \
+                         scratch ({} tets) after {stats:?}; smallest failing input: a frontier \
+                         made for {from:?} updated to {to:?}",
+                        incremental.stats.tets, scratch.stats.tets
+                    );
+                }
                 assert_eq!(frontier.nb_tets(), scratch.stats.tets);
                 if step % 8 == 0 {
                     let v = incremental.mesh.validate();

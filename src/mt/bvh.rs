@@ -7,7 +7,7 @@
 //! fragments then their tets.
 //!
 //! Built top-down by median split of the box centres along the longest axis; leaves hold up
-//! to [`LEAF_SIZE`] items. Nodes are stored depth-first, the left child right after its
+//! to four items. Nodes are stored depth-first, the left child right after its
 //! parent, so a traversal walks memory mostly forwards.
 
 use super::{FragmentKind, Mt};

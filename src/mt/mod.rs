@@ -1,7 +1,7 @@
 //! # The Multi-Tessellation (paper §2)
 //!
 //! This layer owns the multiresolution model: how it is stored ([`Mt`]), built by
-//! simplifying a [`TetMesh`] ([`Mt::build`]), checked ([`Mt::validate`]), cut into
+//! simplifying a [`TetMesh`](crate::mesh::TetMesh) ([`Mt::build`]), checked ([`Mt::validate`]), cut into
 //! variable-resolution meshes ([`Mt::extract`], [`Frontier`]) and saved ([`Mt::save`],
 //! [`Mt::load`]). It uses `geom` and `mesh` only; it knows nothing of cuts, files other
 //! than its own `.mt` format, or the C ABI.
@@ -51,15 +51,15 @@
 //! records, and rebuild the arc lists. [`Mt::canonical_form`] compares two MTs independently
 //! of vertex, tet and fragment numbering.
 
-mod build;
-mod bvh;
-mod canonical;
+pub mod build;
+pub mod bvh;
+pub mod canonical;
 mod csr;
-mod error;
-mod extract;
-mod file;
-mod frontier;
-mod validate;
+pub mod error;
+pub mod extract;
+pub mod file;
+pub mod frontier;
+pub mod validate;
 
 pub use build::{BuildError, BuildOptions, BuildPhase, BuildProgress, BuildStats, Rejections};
 pub use bvh::{Bvh, FragmentBvh, Region};

@@ -13,7 +13,7 @@
 //! parallel (rayon); everything else is sequential and in a fixed order, so the result does
 //! not depend on the number of threads.
 //!
-//! **Rules** ([`collapse`]): no created tet inverted or flat (exact `orient3d`); no created
+//! **Rules** (in `collapse.rs`): no created tet inverted or flat (exact `orient3d`); no created
 //! tet below the quality floor unless the star already was; the link condition on the
 //! closed complex (mesh plus ghosts); boundary vertices move along boundary edges only,
 //! feature-line vertices along their line only, corners never; the boundary stays within
