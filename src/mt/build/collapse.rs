@@ -1,7 +1,8 @@
 //! The half-edge collapse as a local modification (VCGlib's `LocalModification` shape):
 //! [`Simplifier::evaluate`] finds a vertex's best legal collapse and its priority,
 //! [`Simplifier::is_up_to_date`] tells a queued candidate from a stale one,
-//! [`Simplifier::is_feasible`] applies every rule, [`Simplifier::execute`] performs it and
+//! [`Simplifier::is_feasible`] applies every rule (through [`Simplifier::check`] for queued
+//! candidates), [`Simplifier::execute`] performs it and
 //! records one fragment (paper §2: destroyed = the star of the removed vertex, created =
 //! the tets that replace it).
 //!
@@ -59,9 +60,11 @@ pub(super) struct Candidate {
     pub priority: f64,
     pub stamp_v: u32,
     pub stamp_w: u32,
-    /// Whether the exact rules ([`Simplifier::is_feasible`]) were checked. Interior
-    /// candidates are queued unchecked and checked when popped: most are invalidated by
-    /// nearby collapses before then, and the exact rules are most of the cost.
+    /// Whether the exact rules ([`Simplifier::is_feasible`]) were checked. Candidates whose
+    /// priority does not depend on the check (interior vertices, and boundary vertices
+    /// under a metric that ignores the boundary deviation) are queued unchecked and checked
+    /// once selected for a round: most are invalidated by nearby collapses before then,
+    /// and the exact rules are most of the cost.
     pub checked: bool,
     /// Which evaluation of `v` this is (set when queued; see `simplify`).
     pub ticket: u32,
@@ -284,10 +287,12 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
 
     /// The best legal collapse of `v` (lowest priority), or `None`.
     ///
-    /// Priorities come from floating-point volumes and errors, the exact rules run on the
-    /// best direction only (they rarely fail; on failure the next best is tried). For an
-    /// interior vertex the search is branch and bound: directions are tried shortest edge
-    /// first, and one is abandoned as soon as a tet's error reaches the best priority so far.
+    /// Priorities come from floating-point volumes and errors. With `checked`, the exact
+    /// rules then run on the best direction (they rarely fail; on failure the next best is
+    /// tried); without, the best is returned unchecked (see [`Candidate::checked`]) unless
+    /// the metric needs the boundary deviation, which only the check measures. The search
+    /// is branch and bound: directions are tried shortest edge first, and one is abandoned
+    /// as soon as a tet's error reaches the best priority so far.
     pub(super) fn evaluate(
         &self,
         v: u32,
@@ -346,11 +351,11 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
             .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         // Boundary vertices are checked at once when the metric's priority depends on the
         // boundary deviation (which only the check measures).
-        let interior = self.class[v as usize] == VertexClass::Interior
+        let ranked_before_check = self.class[v as usize] == VertexClass::Interior
             || !self.metric.uses_boundary_deviation();
         let order = std::mem::take(&mut s.order);
-        let best = if interior {
-            self.best_interior(v, &order, checked, s, rej)
+        let best = if ranked_before_check {
+            self.best_ranked(v, &order, checked, s, rej)
         } else {
             self.best_boundary(v, &order, s, rej)
         };
@@ -441,9 +446,10 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
         }
     }
 
-    /// Branch and bound over the directions of an interior vertex; with `checked`, the
-    /// best is checked against the exact rules (and the next best tried on failure).
-    fn best_interior(
+    /// Branch and bound over the directions of `v`, ranked by the errors alone; with
+    /// `checked`, the best is checked against the exact rules (and the next best tried on
+    /// failure).
+    fn best_ranked(
         &self,
         v: u32,
         order: &[(f64, u32)],

@@ -2,24 +2,34 @@
 //! invalidated priority queue, each recorded as one fragment; then the record is frozen
 //! into the flat store of [`Mt`].
 //!
+//! **Queue.** Each vertex has at most one live candidate (its best direction, with the
+//! vertex's *ticket*: re-evaluating a vertex invalidates its older entries, and an entry
+//! whose other end changed since is dropped and its vertex re-evaluated). Evaluation ranks
+//! directions by the errors of the tets they would create; the exact rules, which are most
+//! of the cost, run only for candidates selected into a round (VCGlib's is-feasible at pop).
+//!
 //! **Rounds.** Collapses are taken in *rounds* of independent collapses: popping candidates
-//! in priority order, a collapse is accepted only if neither of its vertices lies in the
-//! closed star of a collapse already accepted in the round (those are deferred). Accepted
+//! in priority order, a collapse is selected only if neither of its vertices lies in the
+//! closed star of a collapse already selected in the round (those are deferred). Selected
 //! collapses have disjoint floors and none consumes another's ceiling, so they are
 //! independent fragments of the DAG: the depth grows by about one per round, not one per
 //! collapse. A round also stops at a candidate whose priority exceeds
 //! [`BuildOptions::batch_ratio`] times the round's first, so the order of errors is kept
-//! within that factor. Between rounds, the vertices whose stars changed are re-evaluated in
-//! parallel (rayon); everything else is sequential and in a fixed order, so the result does
-//! not depend on the number of threads.
+//! within that factor. The round's selections are then checked against the exact rules in
+//! parallel (independent collapses do not affect each other's checks); those that fail give
+//! way to their vertex's best legal collapse, queued for later. The vertices whose stars
+//! changed are re-evaluated in parallel (rayon); everything else is sequential and in a
+//! fixed order, so the result does not depend on the number of threads, nor on how the
+//! input numbers its vertices and tets (the build renumbers them by position first).
 //!
-//! **Rules** (in `collapse.rs`): no created tet inverted or flat (exact `orient3d`); no created
-//! tet below the quality floor unless the star already was; the link condition on the
-//! closed complex (mesh plus ghosts); boundary vertices move along boundary edges only,
+//! **Rules** (in `collapse.rs`): no created tet inverted or flat (exact `orient3d`); no
+//! created tet below the quality floor unless the star already was; the link condition on
+//! the closed complex (mesh plus ghosts); boundary vertices move along boundary edges only,
 //! feature-line vertices along their line only, corners never; the boundary stays within
-//! the tolerance of the original surface both ways (original vertices to the new faces,
-//! points of the new faces to the original surface) and no boundary face turns by more
-//! than the feature angle.
+//! the tolerance of the original surface both ways (points of the original surface —
+//! vertices, edge midpoints, face centroids — to the new faces, and points of the new faces
+//! on a grid to the original surface) and no boundary face turns by more than the feature
+//! angle.
 
 mod collapse;
 mod link;
