@@ -374,16 +374,16 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
         rej: &mut Rejections,
     ) -> Option<f64> {
         let pw = self.pos[w as usize];
-        for st in &s.star {
-            if !contains(&st.tet, w) && st.normal.dot(pw - st.anchor) <= 0.0 {
-                rej.orientation += 1;
-                return None;
-            }
-        }
         let mut priority = 0.0f64;
+        // One pass: a direction is dropped at its first inverted tet or, once it cannot
+        // beat the bound, at its first tet reaching it.
         for st in &s.star {
             if contains(&st.tet, w) {
                 continue;
+            }
+            if st.normal.dot(pw - st.anchor) <= 0.0 {
+                rej.orientation += 1;
+                return None;
             }
             let c = self.corners(&substitute(&st.tet, v, w));
             let e = self.metric.tet_error(&self.sample(c, 0.0));
