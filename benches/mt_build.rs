@@ -20,6 +20,18 @@ fn repo(p: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(p)
 }
 
+/// CPU seconds (user + system, all threads) this process has used so far, from
+/// /proc/self/stat (clock ticks of 1/100 s, the Linux default); `None` elsewhere.
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the command name (which may contain spaces) start after the last ')'.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    let utime: f64 = fields.get(11)?.parse().ok()?;
+    let stime: f64 = fields.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
+}
+
 fn loadavg() -> String {
     std::fs::read_to_string("/proc/loadavg")
         .unwrap_or_default()
@@ -35,19 +47,21 @@ fn bench_build(name: &str, path: &Path, runs: usize) -> Value {
         Err(e) => return json!({"mesh": name, "error": e.to_string()}),
     };
     let read = t.elapsed().as_secs_f64();
-    let mut best: Option<(f64, BuildStats, usize, usize)> = None;
+    let mut best: Option<(f64, Option<f64>, BuildStats, usize, usize)> = None;
     for _ in 0..runs {
+        let cpu = cpu_seconds();
         let t = Instant::now();
         let (mt, stats) = match Mt::build(&mesh, &BuildOptions::DEFAULT) {
             Ok(r) => r,
             Err(e) => return json!({"mesh": name, "error": e.to_string()}),
         };
         let s = t.elapsed().as_secs_f64();
+        let cpu = cpu.zip(cpu_seconds()).map(|(a, b)| b - a);
         if best.as_ref().is_none_or(|b| s < b.0) {
-            best = Some((s, stats, mt.heap_bytes(), mt.summary().coarsest_tets));
+            best = Some((s, cpu, stats, mt.heap_bytes(), mt.summary().coarsest_tets));
         }
     }
-    let Some((seconds, stats, bytes, coarsest)) = best else {
+    let Some((seconds, cpu, stats, bytes, coarsest)) = best else {
         return json!({"mesh": name, "error": "no run"});
     };
     json!({
@@ -57,6 +71,7 @@ fn bench_build(name: &str, path: &Path, runs: usize) -> Value {
         "read_seconds": read,
         "runs": runs,
         "build_seconds": seconds,
+        "build_cpu_seconds": cpu,
         "input_tets_per_second": stats.input_tets as f64 / seconds,
         "mt_heap_bytes": bytes,
         "mt_bytes_per_input_tet": bytes as f64 / stats.input_tets as f64,
@@ -77,8 +92,18 @@ fn bench_tetgen(off: &Path) -> Value {
         return json!({"error": format!("{}: {e}", off.display())});
     }
     let args = ["-pq1.414a3.3e-7Q", "fandisk.off"];
+    // Through /usr/bin/time when present, for TetGen's CPU seconds too.
+    let timed = Path::new("/usr/bin/time").exists();
     let t = Instant::now();
-    let out = Command::new("tetgen").args(args).current_dir(&dir).output();
+    let out = if timed {
+        Command::new("/usr/bin/time")
+            .args(["-f", "%U %S", "tetgen"])
+            .args(args)
+            .current_dir(&dir)
+            .output()
+    } else {
+        Command::new("tetgen").args(args).current_dir(&dir).output()
+    };
     let seconds = t.elapsed().as_secs_f64();
     let result = match out {
         Ok(o) if o.status.success() => {
@@ -89,7 +114,23 @@ fn bench_tetgen(off: &Path) -> Value {
                         .next()
                         .and_then(|x| x.parse::<u64>().ok())
                 });
-            json!({"command": format!("tetgen {}", args.join(" ")), "seconds": seconds, "tets": tets})
+            let cpu = timed
+                .then(|| {
+                    let err = String::from_utf8_lossy(&o.stderr);
+                    let last = err.lines().last()?.to_string();
+                    let v: Vec<f64> = last
+                        .split_whitespace()
+                        .filter_map(|x| x.parse().ok())
+                        .collect();
+                    (v.len() == 2).then(|| v[0] + v[1])
+                })
+                .flatten();
+            json!({
+                "command": format!("tetgen {}", args.join(" ")),
+                "seconds": seconds,
+                "cpu_seconds": cpu,
+                "tets": tets,
+            })
         }
         Ok(o) => json!({"error": format!("tetgen failed: {}", String::from_utf8_lossy(&o.stderr))}),
         Err(e) => json!({"error": format!("tetgen not runnable: {e}")}),
@@ -140,6 +181,12 @@ fn main() {
         if let (Some(a), Some(b)) = (ours["build_seconds"].as_f64(), tetgen["seconds"].as_f64()) {
             report["fandisk_1m_build_over_tetgen"] = json!(a / b);
             report["target_build_le_tetgen_met"] = json!(a <= b);
+        }
+        if let (Some(a), Some(b)) = (
+            ours["build_cpu_seconds"].as_f64(),
+            tetgen["cpu_seconds"].as_f64(),
+        ) {
+            report["fandisk_1m_build_cpu_over_tetgen_cpu"] = json!(a / b);
         }
         report["tetgen_fandisk_1m"] = tetgen;
         meshes.push(ours);
