@@ -139,3 +139,23 @@ fn well_sealed_but_inconsistent_files_are_refused_or_caught() {
     assert!(!r.is_valid());
     eprintln!("{r}");
 }
+
+#[test]
+fn attributes_survive_the_file() {
+    let mut input = mt_common::mesh("fandisk");
+    let n = input.nb_vertices();
+    let velocity: Vec<f64> = (0..3 * n).map(|i| i as f64 * 0.5).collect();
+    input
+        .point_data
+        .insert(mtcut::mesh::Attribute::new("velocity", 3, velocity).unwrap());
+    let region: Vec<f64> = (0..input.nb_tets()).map(|t| (t % 7) as f64).collect();
+    input
+        .cell_data
+        .insert(mtcut::mesh::Attribute::new("region", 1, region).unwrap());
+    let options = mtcut::mt::BuildOptions::DEFAULT.with_target_tets(Some(input.nb_tets() / 3));
+    let (mt, _) = Mt::build(&input, &options).unwrap();
+    let back = Mt::from_bytes(&mt.to_bytes()).unwrap();
+    assert!(back == mt);
+    assert_eq!(back.point_data().get("velocity").unwrap().components, 3);
+    assert!(back.validate().is_valid());
+}

@@ -362,8 +362,8 @@ impl Mt {
         self.tets[t.idx()][3] == GHOST
     }
 
-    /// Per-tet attributes, one row per pool tet (inherited from the input's cell data; NaN
-    /// on ghosts).
+    /// Per-tet attributes, one row per pool tet (inherited from the input's cell data; 0 on
+    /// ghosts, which are never extracted).
     pub fn cell_data(&self) -> &Attributes {
         &self.cell_data
     }

@@ -875,7 +875,9 @@ fn freeze<E: TetError + ?Sized>(
     let mut kind = vec![FragmentKind::Collapse; nf];
     kind[0] = FragmentKind::Root;
     kind[nf - 1] = FragmentKind::Drain;
-    // Cell data: each tet inherits the row of the input tet it descends from.
+    // Cell data: each tet inherits the row of the input tet it descends from (ghosts, which
+    // descend from none and are never extracted, get zeros: a NaN would make the MT
+    // unequal to itself).
     let n_input = mesh.nb_tets();
     let mut cell_data = Attributes::new();
     if !mesh.cell_data.is_empty() {
@@ -894,7 +896,7 @@ fn freeze<E: TetError + ?Sized>(
             let mut values = Vec::with_capacity(order.len() * k);
             for &t in &order {
                 match base[t as usize] {
-                    u32::MAX => values.extend(std::iter::repeat_n(f64::NAN, k)),
+                    u32::MAX => values.extend(std::iter::repeat_n(0.0, k)),
                     b => values.extend_from_slice(col.get(b as usize)),
                 }
             }
