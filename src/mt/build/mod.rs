@@ -18,9 +18,10 @@
 //! within that factor. The round's selections are then checked against the exact rules in
 //! parallel (independent collapses do not affect each other's checks); those that fail give
 //! way to their vertex's best legal collapse, queued for later. The vertices whose stars
-//! changed are re-evaluated in parallel (rayon); everything else is sequential and in a
-//! fixed order, so the result does not depend on the number of threads, nor on how the
-//! input numbers its vertices and tets (the build renumbers them by position first).
+//! changed are re-evaluated in parallel (rayon), and the stars a round changes are updated
+//! in parallel; everything else is sequential and in a fixed order, so the result does
+//! not depend on the number of threads, nor on how the input numbers its vertices and
+//! tets (the build renumbers them by position first).
 //!
 //! **Rules** (in `collapse.rs`): no created tet inverted or flat (exact `orient3d`); no
 //! created tet below the quality floor unless the star already was; the link condition on
@@ -560,6 +561,7 @@ fn setup<'a, E: TetError + ?Sized>(
         raw_error: vec![0.0],
         tets,
         stars,
+        touched: vec![false; nv],
         stamp: vec![0; nv],
         class,
         features,
@@ -725,20 +727,18 @@ fn simplify<E: TetError + ?Sized>(
         }
         let selected = accepted;
         stats.rounds += usize::from(!selected.is_empty());
-        for c in &selected {
-            let fragment = sim.raw_error.len();
-            if fragment >= MAX_ELEMENTS - 1 || sim.tets.len() >= MAX_ELEMENTS - 64 {
-                return Err(BuildError::TooLarge { max: MAX_ELEMENTS });
-            }
-            changed.clear();
-            sim.execute(c, fragment as u32, &mut changed);
-            removed += 1;
-            // Only the vertices whose star changed need a new evaluation.
-            for &x in &changed {
-                if sim.class[x as usize] != VertexClass::Removed && !is_dirty[x as usize] {
-                    is_dirty[x as usize] = true;
-                    dirty.push(x);
-                }
+        if sim.raw_error.len() + selected.len() >= MAX_ELEMENTS - 1
+            || sim.tets.len() + 64 * selected.len() >= MAX_ELEMENTS
+        {
+            return Err(BuildError::TooLarge { max: MAX_ELEMENTS });
+        }
+        sim.execute_round(&selected, &mut changed);
+        removed += selected.len();
+        // Only the vertices whose star changed need a new evaluation.
+        for &x in &changed {
+            if sim.class[x as usize] != VertexClass::Removed && !is_dirty[x as usize] {
+                is_dirty[x as usize] = true;
+                dirty.push(x);
             }
         }
         for c in deferred {
