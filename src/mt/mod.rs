@@ -77,6 +77,7 @@ use crate::geom::{Aabb, DVec3};
 use crate::mesh::{Attributes, FragmentId, Tet, TetId, VertexId};
 use csr::Csr;
 pub use csr::{Row as ArcList, RowIter as ArcIter};
+use rayon::prelude::*;
 use std::ops::Range;
 
 /// The virtual vertex outside the mesh that ghost tets join boundary triangles to. It has
@@ -279,19 +280,27 @@ impl Mt {
         }
         let level = levels(nf, &p.arc_creator, &in_arcs)
             .ok_or_else(|| "the DAG has a cycle".to_string())?;
-        let mut boxes = vec![Aabb::EMPTY; nf];
-        for a in 0..na {
+        let arc_box = |a: u32| {
+            let a = a as usize;
             let mut b = Aabb::EMPTY;
             for t in &p.tets[p.arc_start[a] as usize..p.arc_start[a + 1] as usize] {
                 for v in t.iter().filter(|v| **v != GHOST) {
                     b.grow(p.positions[v.idx()]);
                 }
             }
-            for f in [p.arc_creator[a], p.arc_destroyer[a]] {
-                boxes[f.idx()] = boxes[f.idx()].union(&b);
-            }
-        }
-        let bbox: Vec<BoxF32> = boxes.iter().map(BoxF32::enclosing).collect();
+            b
+        };
+        let bbox: Vec<BoxF32> = (0..nf)
+            .into_par_iter()
+            .map(|f| {
+                let b = out_arcs
+                    .row(f)
+                    .into_iter()
+                    .chain(in_arcs.row(f))
+                    .fold(Aabb::EMPTY, |b, a| b.union(&arc_box(a)));
+                BoxF32::enclosing(&b)
+            })
+            .collect();
         let of_kind = |k: FragmentKind| -> Vec<FragmentId> {
             (0..nf)
                 .filter(|&f| p.kind[f] == k)

@@ -460,7 +460,11 @@ fn setup<'a, E: TetError + ?Sized>(
     let nv = mesh.nb_vertices();
     let bbox = mesh.bbox();
     let mut vertex_of: Vec<u32> = (0..nv as u32).collect();
-    let codes: Vec<u64> = mesh.positions().iter().map(|p| morton(*p, &bbox)).collect();
+    let codes: Vec<u64> = mesh
+        .positions()
+        .par_iter()
+        .map(|p| morton(*p, &bbox))
+        .collect();
     // Ties (equal codes) are broken by the coordinates, so the order, and with it the whole
     // build, does not depend on how the input happens to number its vertices and tets.
     let bits = |v: u32| mesh.positions()[v as usize].to_array().map(f64::to_bits);
@@ -492,17 +496,34 @@ fn setup<'a, E: TetError + ?Sized>(
     let faces = boundary_faces(&tets);
     tets.extend(faces.iter().map(|f| [f[0], f[1], f[2], GHOST]));
     let n = tets.len();
-    let mut stars: Vec<Vec<Incident>> = vec![Vec::new(); nv];
-    for (t, tet) in tets.iter().enumerate() {
-        for x in tet {
-            if *x != GHOST {
-                stars[x.idx()].push(Incident {
-                    id: t as u32,
-                    tet: *tet,
-                });
-            }
-        }
-    }
+    // Stars from the incidences sorted by vertex (in parallel), each star in tet order.
+    let mut incidences: Vec<(u32, u32)> = tets
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(t, tet)| {
+            tet.iter()
+                .filter(|x| **x != GHOST)
+                .map(move |x| (x.0, t as u32))
+        })
+        .collect();
+    incidences.par_sort_unstable();
+    let starts: Vec<usize> = (0..=nv as u32)
+        .into_par_iter()
+        .map(|v| incidences.partition_point(|p| p.0 < v))
+        .collect();
+    let stars: Vec<Vec<Incident>> = (0..nv)
+        .into_par_iter()
+        .map(|v| {
+            incidences[starts[v]..starts[v + 1]]
+                .iter()
+                .map(|&(_, t)| Incident {
+                    id: t,
+                    tet: tets[t as usize],
+                })
+                .collect()
+        })
+        .collect();
+    drop(incidences);
     let features: HashSet<(u32, u32), FxBuild> = if options.preserve_features {
         feature_edges(&pos, &faces, options.feature_angle_degrees)
             .into_iter()
@@ -810,17 +831,27 @@ fn freeze<E: TetError + ?Sized>(
             .fold(error[f], f64::max);
         error[f] = m;
     }
-    // Fragments renumbered along a Morton curve of their box centres (root first, drain
+    // Fragments renumbered along a Morton curve of their ceiling's centre (root first, drain
     // last): fragments near in space are near in memory, and so, through the pool order
     // below, are their arcs and tets, which is what incremental extraction and cuts walk.
-    let mut boxes = vec![crate::geom::Aabb::EMPTY; nf];
-    for (t, tet) in tets.iter().enumerate() {
-        for f in [creator[t], destroyer[t]] {
-            for v in tet.iter().filter(|v| **v != GHOST) {
-                boxes[f as usize].grow(pos[v.idx()]);
-            }
-        }
-    }
+    // Boxes of the ceilings (enough to place a fragment): the pool is still in creation
+    // order, so each fragment's ceiling is one run of it.
+    let runs: Vec<usize> = (0..=nf as u32)
+        .into_par_iter()
+        .map(|f| creator.partition_point(|&c| c < f))
+        .collect();
+    let boxes: Vec<crate::geom::Aabb> = (0..nf)
+        .into_par_iter()
+        .map(|f| {
+            crate::geom::Aabb::from_points(
+                tets[runs[f]..runs[f + 1]]
+                    .iter()
+                    .flatten()
+                    .filter(|v| **v != GHOST)
+                    .map(|v| &pos[v.idx()]),
+            )
+        })
+        .collect();
     let scale = crate::geom::Aabb::from_points(&pos);
     let code = |f: usize| -> u64 {
         if f == 0 {
@@ -845,7 +876,7 @@ fn freeze<E: TetError + ?Sized>(
     order.par_sort_unstable_by_key(|&t| (creator[t as usize], destroyer[t as usize], t));
     let vertex_of = &renumbering.vertex_of;
     let new_tets: Vec<Tet> = order
-        .iter()
+        .par_iter()
         .map(|&t| {
             tets[t as usize].map(|v| {
                 if v == GHOST {
