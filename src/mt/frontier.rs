@@ -59,6 +59,8 @@ pub struct Frontier {
     vertices: Vec<VertexId>,
     uses: Vec<u32>,
     free_vertices: Vec<u32>,
+    /// Vertex slots whose use count fell to zero during the current update.
+    unused: Vec<u32>,
     live_vertices: usize,
     // Indexes for finding candidates, built on first need.
     bvh: Option<FragmentBvh>,
@@ -85,6 +87,7 @@ impl Frontier {
             vertices: Vec::new(),
             uses: Vec::new(),
             free_vertices: Vec::new(),
+            unused: Vec::new(),
             live_vertices: 0,
             bvh: None,
             by_error: None,
@@ -310,19 +313,32 @@ impl Frontier {
         for &f in &flipped {
             self.mark[f as usize] = false;
         }
-        // Additions first, so a vertex shared by an outgoing and an incoming tet keeps its
-        // slot.
+        // Removals first, so additions reuse the slots just freed (still in cache); a
+        // vertex whose last tet leaves is only released at the end, if no incoming tet
+        // took it up again, so a vertex that stays in the mesh keeps its slot.
+        for &a in &removed {
+            for t in mt.arc_tets(a as usize) {
+                stats.tets_removed += usize::from(self.remove_tet(mt, TetId::from_usize(t)));
+            }
+        }
         for &a in &added {
             let c = mt.arc_creator(a as usize);
             for t in mt.arc_tets(a as usize) {
                 stats.tets_added += usize::from(self.add_tet(mt, TetId::from_usize(t), c));
             }
         }
-        for &a in &removed {
-            for t in mt.arc_tets(a as usize) {
-                stats.tets_removed += usize::from(self.remove_tet(mt, TetId::from_usize(t)));
+        let unused = std::mem::take(&mut self.unused);
+        for &s in &unused {
+            if self.uses[s as usize] == 0 {
+                let v = self.vertices[s as usize];
+                self.vertices[s as usize] = VertexId::INVALID;
+                self.slot_of_vertex[v.idx()] = NONE;
+                self.free_vertices.push(s);
+                self.live_vertices -= 1;
             }
         }
+        self.unused = unused;
+        self.unused.clear();
     }
 
     /// The fragments whose threshold can differ between the current and the new options.
@@ -441,14 +457,12 @@ impl Frontier {
         s
     }
 
+    /// One tet fewer uses `v`; at none it is listed for release at the end of the update.
     fn release_vertex(&mut self, v: VertexId) {
-        let s = self.slot_of_vertex[v.idx()] as usize;
-        self.uses[s] -= 1;
-        if self.uses[s] == 0 {
-            self.vertices[s] = VertexId::INVALID;
-            self.slot_of_vertex[v.idx()] = NONE;
-            self.free_vertices.push(s as u32);
-            self.live_vertices -= 1;
+        let s = self.slot_of_vertex[v.idx()];
+        self.uses[s as usize] -= 1;
+        if self.uses[s as usize] == 0 {
+            self.unused.push(s);
         }
     }
 }
