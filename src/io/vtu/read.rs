@@ -2,9 +2,8 @@
 
 use super::binary::{decode_base64, read_array};
 use super::format::{VTK_TETRA, cell_type_name};
-use super::values::{first_mismatch, integer_at, parse_ascii, to_f64, to_indices};
+use super::values::{first_mismatch, integer_at, parse_ascii, to_f64, to_index_groups, to_points};
 use super::xml::{ArrayDecl, Format, Header, Section, XmlError, scan};
-use crate::geom::DVec3;
 use crate::io::error::{IoError, IoErrorKind};
 use crate::mesh::{Attribute, Attributes, ImportReport, MeshError, TetMesh};
 use std::borrow::Cow;
@@ -107,8 +106,8 @@ impl<'a> Reader<'a> {
             ));
         }
         let conn_bytes = self.decode(&header, conn, 4 * m, 1)?;
-        let ids =
-            to_indices(&conn_bytes, conn.scalar, header.layout.order, n).map_err(|(k, v)| {
+        let tets = to_index_groups::<4>(&conn_bytes, conn.scalar, header.layout.order, n).map_err(
+            |(k, v)| {
                 self.array_error(
                     conn,
                     format!(
@@ -117,14 +116,9 @@ impl<'a> Reader<'a> {
                         n.max(1) - 1
                     ),
                 )
-            })?;
+            },
+        )?;
         drop(conn_bytes);
-        let tets: Vec<[u32; 4]> = ids
-            .chunks_exact(4)
-            .map(|c| [c[0], c[1], c[2], c[3]])
-            .collect();
-        drop(ids);
-
         if points.components != 3 {
             return Err(self.array_error(
                 points,
@@ -132,11 +126,8 @@ impl<'a> Reader<'a> {
             ));
         }
         let point_bytes = self.decode(&header, points, n, 3)?;
-        let xyz = to_f64(&point_bytes, points.scalar, header.layout.order);
+        let positions = to_points(&point_bytes, points.scalar, header.layout.order);
         drop(point_bytes);
-        let positions: Vec<DVec3> = xyz.chunks_exact(3).map(DVec3::from_slice).collect();
-        drop(xyz);
-
         let point_data = self.attributes(&header, Section::PointData, n)?;
         let cell_data = self.attributes(&header, Section::CellData, m)?;
 

@@ -4,6 +4,7 @@
 //! conversions exist once.
 
 use super::format::{ByteOrder, Scalar};
+use crate::geom::DVec3;
 use rayon::prelude::*;
 
 /// A VTK scalar type as a Rust primitive.
@@ -139,26 +140,58 @@ pub fn to_f64(bytes: &[u8], scalar: Scalar, order: ByteOrder) -> Vec<f64> {
     with_prim!(scalar, T => map_values::<T, f64>(bytes, order, |v| v.to_f64()))
 }
 
-/// All values as indices below `bound` (< u32::MAX); on failure, the position of the
-/// first value that is not, and that value as text.
-pub fn to_indices(
+/// Groups of `K` values as indices below `bound` (< u32::MAX): tetrahedra from a
+/// connectivity array. On failure, the position of the first value that is not a valid
+/// index, and that value as text.
+pub fn to_index_groups<const K: usize>(
     bytes: &[u8],
     scalar: Scalar,
     order: ByteOrder,
     bound: usize,
-) -> Result<Vec<u32>, (usize, String)> {
-    let out = with_prim!(scalar, T => map_values::<T, u32>(bytes, order, |v| match v.to_i128() {
-        Some(i) if i >= 0 && (i as u128) < bound as u128 => i as u32,
-        _ => u32::MAX,
-    }));
-    match out.iter().position(|&i| i == u32::MAX) {
+) -> Result<Vec<[u32; K]>, (usize, String)> {
+    fn index<T: Prim>(c: &[u8], order: ByteOrder, bound: usize) -> u32 {
+        match T::read(c, order).to_i128() {
+            Some(i) if i >= 0 && (i as u128) < bound as u128 => i as u32,
+            _ => u32::MAX,
+        }
+    }
+    let out: Vec<[u32; K]> = with_prim!(scalar, T => {
+        let group = |g: &[u8]| -> [u32; K] {
+            std::array::from_fn(|k| index::<T>(&g[k * T::SIZE..(k + 1) * T::SIZE], order, bound))
+        };
+        if bytes.len() / T::SIZE < PARALLEL_MIN {
+            bytes.chunks_exact(K * T::SIZE).map(group).collect()
+        } else {
+            bytes.par_chunks_exact(K * T::SIZE).map(group).collect()
+        }
+    });
+    match out.par_iter().position_first(|g| g.contains(&u32::MAX)) {
         None => Ok(out),
-        Some(k) => {
+        Some(g) => {
+            let k = K * g + out[g].iter().position(|&i| i == u32::MAX).unwrap_or(0);
             let c = &bytes[k * scalar.size()..(k + 1) * scalar.size()];
             let text = with_prim!(scalar, T => format!("{}", T::read(c, order).to_f64()));
             Err((k, text))
         }
     }
+}
+
+/// Points: groups of three values as positions.
+pub fn to_points(bytes: &[u8], scalar: Scalar, order: ByteOrder) -> Vec<DVec3> {
+    with_prim!(scalar, T => {
+        let point = |g: &[u8]| {
+            DVec3::new(
+                T::read(&g[..T::SIZE], order).to_f64(),
+                T::read(&g[T::SIZE..2 * T::SIZE], order).to_f64(),
+                T::read(&g[2 * T::SIZE..], order).to_f64(),
+            )
+        };
+        if bytes.len() / T::SIZE < PARALLEL_MIN {
+            bytes.chunks_exact(3 * T::SIZE).map(point).collect()
+        } else {
+            bytes.par_chunks_exact(3 * T::SIZE).map(point).collect()
+        }
+    })
 }
 
 /// The value at `k` as an integer, if it is one (for checking cell types and offsets).
@@ -176,13 +209,19 @@ pub fn first_mismatch(
     expect: impl Fn(usize) -> i128 + Sync,
 ) -> Option<usize> {
     with_prim!(scalar, T => {
-        if bytes.len() / T::SIZE < PARALLEL_MIN {
-            bytes.chunks_exact(T::SIZE).enumerate()
-                .position(|(k, c)| T::read(c, order).to_i128() != Some(expect(k)))
-        } else {
-            bytes.par_chunks_exact(T::SIZE).enumerate()
-                .position_first(|(k, c)| T::read(c, order).to_i128() != Some(expect(k)))
-        }
+        // Blocks of values, each scanned sequentially: per-value parallel overhead would
+        // cost more than the comparison.
+        let block = 1 << 14;
+        bytes
+            .par_chunks(block * T::SIZE)
+            .enumerate()
+            .find_map_first(|(b, chunk)| {
+                chunk
+                    .chunks_exact(T::SIZE)
+                    .enumerate()
+                    .position(|(k, c)| T::read(c, order).to_i128() != Some(expect(b * block + k)))
+                    .map(|k| b * block + k)
+            })
     })
 }
 
@@ -243,17 +282,25 @@ mod tests {
             to_f64(&0.1f32.to_le_bytes(), Scalar::F32, ByteOrder::Little),
             vec![0.1f32 as f64]
         );
-        let ids: Vec<u8> = [3u16, 9, 2].iter().flat_map(|x| x.to_le_bytes()).collect();
+        let ids: Vec<u8> = [3u16, 9].iter().flat_map(|x| x.to_le_bytes()).collect();
         assert_eq!(
-            to_indices(&ids, Scalar::U16, ByteOrder::Little, 10),
-            Ok(vec![3, 9, 2])
+            to_index_groups::<2>(&ids, Scalar::U16, ByteOrder::Little, 10),
+            Ok(vec![[3, 9]])
         );
         assert_eq!(
-            to_indices(&ids, Scalar::U16, ByteOrder::Little, 9),
+            to_index_groups::<2>(&ids, Scalar::U16, ByteOrder::Little, 9),
             Err((1, "9".to_string()))
         );
         let neg = (-1i64).to_le_bytes();
-        assert!(to_indices(&neg, Scalar::I64, ByteOrder::Little, 9).is_err());
+        assert!(to_index_groups::<1>(&neg, Scalar::I64, ByteOrder::Little, 9).is_err());
+        let p: Vec<u8> = [1.5f64, -2.0, 3.0]
+            .iter()
+            .flat_map(|x| x.to_be_bytes())
+            .collect();
+        assert_eq!(
+            to_points(&p, Scalar::F64, ByteOrder::Big),
+            vec![DVec3::new(1.5, -2.0, 3.0)]
+        );
     }
 
     #[test]
