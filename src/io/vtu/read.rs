@@ -245,7 +245,11 @@ impl<'a> Reader<'a> {
                     .ok_or_else(|| {
                         self.array_error(
                             a,
-                            format!("offset {offset} is past the end of the appended data"),
+                            format!(
+                                "offset {offset} is past the end of the appended data ({} \
+                                 bytes): the file is truncated or the offset is wrong",
+                                app.end - app.start
+                            ),
                         )
                     })?;
                 if app.base64 {
