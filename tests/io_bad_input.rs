@@ -312,6 +312,13 @@ fn tetgen_bad_input_classes() {
     // Face shared by three tets.
     let m = tetgen_err(&node_text(&FAN_POINTS, ""), &ele_text(&FAN_TETS));
     assert_mentions(&m, &["bad.ele", "faces shared by more than two tets"]);
+    // Absurd header counts: a message, not an allocation.
+    let m = tetgen_err(&node.replacen("5 3 0 0", "99999999999999 3 0 0", 1), &ele);
+    assert_mentions(&m, &["bad.node", "truncated", "99999999999999 nodes"]);
+    let m = tetgen_err(&node.replacen("5 3 0 0", "5 3 99999999999999 0", 1), &ele);
+    assert_mentions(&m, &["bad.node", "line 1", "attributes per node"]);
+    let m = tetgen_err(&node, &ele.replacen("2 4 0", "2 4 99999999999999", 1));
+    assert_mentions(&m, &["bad.ele", "line 1", "attributes per tetrahedron"]);
     // Garbage.
     let m = tetgen_err("\u{1}\u{2}garbage ### \n x y z", &ele);
     assert_mentions(&m, &["bad.node", "line 1", "not a valid count"]);
@@ -396,4 +403,11 @@ fn medit_bad_input_classes() {
     assert_mentions(&m, &["bad.mesh", "line 1", "unknown keyword"]);
     let m = medit_err("MeshVersionFormatted 2\nDimension 2\n");
     assert_mentions(&m, &["line 2", "Dimension 2"]);
+    // Absurd counts: a message, not an allocation.
+    let m = medit_err("MeshVersionFormatted 2\nDimension 3\nVertices\n99999999999999\n0 0 0 0\n");
+    assert_mentions(&m, &["line 3", "99999999999999 vertices"]);
+    let m = medit_err("MeshVersionFormatted 2\nDimension 3\nVertices\n999999999\n0 0 0 0\n");
+    assert_mentions(&m, &["line 5", "truncated"]);
+    let m = medit_err(&good.replacen("Tetrahedra\n2", "Tetrahedra\n5000000000", 1));
+    assert_mentions(&m, &["line 10", "5000000000 tetrahedra"]);
 }
