@@ -185,7 +185,7 @@ pub(super) fn validate_with(mesh: &TetMesh, check_tets: bool) -> ValidationRepor
     for &(t, f, owners) in &faces.overshared {
         r.add(ViolationKind::FaceOverShared, || {
             let fv = face_vertices(&mesh.tet(t), f as usize);
-            format!("face {fv:?} of tet {t} has {owners} tets")
+            format!("face {} of tet {t} has {owners} tets", vertex_list(&fv))
         });
     }
     for &(t, f, u) in &faces.same_orientation {
@@ -222,13 +222,19 @@ fn check_tets_alone(mesh: &TetMesh, r: &mut ValidationReport) {
         .collect();
     for (t, kind) in bad {
         r.add(kind, || match kind {
-            ViolationKind::RepeatedVertex => format!("tet {t} {:?}", mesh.tets()[t]),
+            ViolationKind::RepeatedVertex => format!("tet {t} {}", vertex_list(&mesh.tets()[t])),
             _ => format!(
                 "tet {t} (volume {:e})",
                 mesh.tet_volume(TetId::from_usize(t))
             ),
         });
     }
+}
+
+/// Vertices as "(a, b, c)" in messages.
+fn vertex_list(vs: &[VertexId]) -> String {
+    let ids: Vec<String> = vs.iter().map(|v| v.to_string()).collect();
+    format!("({})", ids.join(", "))
 }
 
 fn check_attributes(mesh: &TetMesh, r: &mut ValidationReport) {

@@ -98,9 +98,9 @@ impl<'a> Reader<'a> {
             return Err(self.array_error(
                 offsets,
                 format!(
-                    "cell {k} ends at connectivity offset {}, but as the {}th tetrahedron it must end at {}",
+                    "cell {k} ends at connectivity offset {}; with 4 points per tetrahedron it \
+                     must end at {}",
                     o.map_or("(not an integer)".to_string(), |o| o.to_string()),
-                    k + 1,
                     4 * (k + 1)
                 ),
             ));
