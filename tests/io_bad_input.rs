@@ -411,3 +411,42 @@ fn medit_bad_input_classes() {
     let m = medit_err(&good.replacen("Tetrahedra\n2", "Tetrahedra\n5000000000", 1));
     assert_mentions(&m, &["line 10", "5000000000 tetrahedra"]);
 }
+
+#[test]
+fn vtu_bad_base64_and_wrong_sizes() {
+    let mesh = tetgen_mesh("pinion");
+    let mut bytes = Vec::new();
+    let b64 = VtuOptions::DEFAULT.with_encoding(mtcut::io::VtuEncoding::InlineBase64);
+    mtcut::io::encode_vtu(&mesh, &b64, &mut bytes).unwrap();
+    let text = String::from_utf8(bytes).unwrap();
+    // A character outside the base64 alphabet inside the Points data.
+    let points = text.find("Name=\"Points\"").unwrap();
+    let data = points + text[points..].find(">\n").unwrap() + 20;
+    let mut bad = text.clone();
+    bad.replace_range(data..data + 1, "#");
+    let e = parse_vtu(bad.as_bytes(), Path::new("b64.vtu"))
+        .unwrap_err()
+        .to_string();
+    assert_mentions(
+        &e,
+        &["b64.vtu", "line ", "DataArray 'Points'", "invalid base64"],
+    );
+    // Counts in the XML that do not match the data.
+    let n = mesh.nb_vertices();
+    let bad = text.replacen(
+        &format!("NumberOfPoints=\"{n}\""),
+        &format!("NumberOfPoints=\"{}\"", n + 1),
+        1,
+    );
+    let e = parse_vtu(bad.as_bytes(), Path::new("b64.vtu"))
+        .unwrap_err()
+        .to_string();
+    assert_mentions(&e, &["b64.vtu", "DataArray 'Points'", "does not describe"]);
+    let ascii = vtu_text(&text_points(&POINTS), &tets_of(&TETS), &[10, 10]).replacen(
+        "NumberOfCells=\"2\"",
+        "NumberOfCells=\"3\"",
+        1,
+    );
+    let e = vtu_err(&ascii);
+    assert_mentions(&e, &["DataArray 'types'", "2 values, expected 3"]);
+}
