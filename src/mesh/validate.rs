@@ -136,6 +136,12 @@ impl fmt::Display for ValidationReport {
     }
 }
 
+/// Vertex ids as "(a, b, c)".
+fn ids(v: &[VertexId]) -> String {
+    let list: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+    format!("({})", list.join(", "))
+}
+
 pub(super) fn validate(mesh: &TetMesh) -> ValidationReport {
     let mut r = ValidationReport::default();
     let pos = mesh.positions();
@@ -166,7 +172,9 @@ pub(super) fn validate(mesh: &TetMesh) -> ValidationReport {
             used[v.idx()] = true;
         }
         if (0..4).any(|a| (a + 1..4).any(|b| tet[a] == tet[b])) {
-            r.add(ViolationKind::RepeatedVertex, || format!("tet {t} {tet:?}"));
+            r.add(ViolationKind::RepeatedVertex, || {
+                format!("tet {t} {}", ids(tet))
+            });
             continue;
         }
         let [a, b, c, d] = tet.map(|v| pos[v.idx()]);
@@ -188,7 +196,7 @@ pub(super) fn validate(mesh: &TetMesh) -> ValidationReport {
     for &(t, f, owners) in &adj.overshared {
         r.add(ViolationKind::FaceOverShared, || {
             let fv = face_vertices(&mesh.tet(t), f as usize);
-            format!("face {fv:?} of tet {t} has {owners} tets")
+            format!("face {} of tet {t} has {owners} tets", ids(&fv))
         });
     }
     for &(t, f, u) in &adj.same_orientation {
@@ -352,7 +360,7 @@ fn check_hanging(pos: &[DVec3], boundary: &[[VertexId; 3]], r: &mut ValidationRe
             }
             if point_in_coplanar_triangle(p, a, b, q) {
                 r.add(ViolationKind::HangingVertex, || {
-                    format!("vertex {v} lies on boundary face {f:?}")
+                    format!("vertex {v} lies on boundary face {}", ids(f))
                 });
                 break;
             }
