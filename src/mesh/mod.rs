@@ -7,13 +7,17 @@
 
 mod adjacency;
 mod attributes;
+mod boundary;
 mod ids;
+mod quality;
 pub mod tables;
 mod validate;
 
 pub use adjacency::{BoundaryFace, FaceAdjacency, VertexStars};
 pub use attributes::{Attribute, Attributes};
+pub use boundary::Boundary;
 pub use ids::{FragmentId, Tet, TetId, VertexId};
+pub use quality::{QualitySummary, TetQuality, tet_quality};
 pub use validate::{Severity, ValidationReport, Violation, ViolationKind};
 
 use crate::geom::{Aabb, DVec3, Sign, orient3d, signed_volume_inexact};
@@ -169,21 +173,6 @@ impl TetMesh {
         Ok((mesh, report))
     }
 
-    /// A mesh assembled by the library's own algorithms (extraction, cuts), whose output is
-    /// valid by construction; not re-checked here (tests call [`validate`](Self::validate)).
-    pub(crate) fn from_parts(positions: Vec<DVec3>, tets: Vec<Tet>) -> TetMesh {
-        debug_assert!(
-            tets.iter()
-                .all(|t| t.iter().all(|v| v.idx() < positions.len()))
-        );
-        TetMesh {
-            positions,
-            tets,
-            point_data: Attributes::new(),
-            cell_data: Attributes::new(),
-        }
-    }
-
     pub fn nb_vertices(&self) -> usize {
         self.positions.len()
     }
@@ -243,28 +232,6 @@ impl TetMesh {
     /// Mutable positions: for deforming a mesh in place. Moving vertices can invert tets;
     /// that is the caller's responsibility (validate() reports it).
     pub fn positions_mut(&mut self) -> &mut [DVec3] {
-        &mut self.positions
-    }
-
-    /// Appends a vertex (attribute rows are the caller's: see [`Attributes::push_lerp`]).
-    pub(crate) fn push_vertex(&mut self, p: DVec3) -> VertexId {
-        self.positions.push(p);
-        VertexId::from_usize(self.positions.len() - 1)
-    }
-
-    /// Appends a tet (attribute rows are the caller's: see [`Attributes::push_copy`]).
-    pub(crate) fn push_tet(&mut self, t: Tet) -> TetId {
-        self.tets.push(t);
-        TetId::from_usize(self.tets.len() - 1)
-    }
-
-    /// Mutable tets, for algorithms that replace tets in place (cuts).
-    pub(crate) fn tets_mut(&mut self) -> &mut Vec<Tet> {
-        &mut self.tets
-    }
-
-    /// Mutable positions vector, for algorithms that append vertices in bulk.
-    pub(crate) fn positions_vec_mut(&mut self) -> &mut Vec<DVec3> {
         &mut self.positions
     }
 
