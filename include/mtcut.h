@@ -58,6 +58,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+
 /**
  * A Multi-Tessellation: a multiresolution model of a tetrahedral mesh (opaque). Declared
  * so that host code can already hold pointers to it; the functions that build, extract,

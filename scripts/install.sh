@@ -30,12 +30,16 @@ prefix=$(cd "$prefix" && pwd)
 cd "$(dirname "$0")/.."
 version=$(sed -n 's/^version = "\(.*\)"$/\1/p' Cargo.toml | head -n 1)
 major=${version%%.*}
-target=${CARGO_TARGET_DIR:-target}/release
+# Where cargo builds (CARGO_TARGET_DIR, a config file, or ./target), as an absolute path.
+target_dir=$(cargo metadata --format-version 1 --no-deps --locked |
+  sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')
+[ -n "$target_dir" ] || { echo "$0: cargo metadata gave no target directory" >&2; exit 1; }
+target=$target_dir/release
 native="$target/mtcut-native-static-libs.txt"
 
 # One build gives the shared and the static library, and rustc's list of the system
 # libraries the static one needs (written when the library is compiled).
-build() { cargo rustc --release --locked --lib -- --print "native-static-libs=$PWD/$native"; }
+build() { cargo rustc --release --locked --lib -- --print "native-static-libs=$native"; }
 build
 if [ ! -s "$native" ]; then
   # Up to date from a build that did not ask for the list: rebuild this crate once.
