@@ -755,3 +755,115 @@ fn versions_agree() {
     );
     assert_eq!(numbers, v);
 }
+
+/// A small deterministic generator (xorshift64*), so a failing case is named by its seed.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+}
+
+/// Random arrays — duplicate and out-of-range indices, NaN and infinite coordinates,
+/// coincident points, cube corners — are answered with OK or INVALID_MESH, never a panic;
+/// every mesh accepted is valid and answers every query.
+#[test]
+fn random_arrays_never_panic_and_accepted_meshes_are_valid() {
+    let mut accepted = 0;
+    for seed in 1..=1000u64 {
+        let mut rng = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        let (n, mut xyz, mut tets) = if seed % 2 == 0 {
+            // Random points on a 3x3x3 grid: coincident and coplanar points are common.
+            let n = 4 + rng.below(6) as usize;
+            let xyz: Vec<f64> = (0..3 * n).map(|_| rng.below(3) as f64).collect();
+            let tets: Vec<u32> = (0..4 * (1 + rng.below(4) / 2))
+                .map(|_| rng.below(n as u64) as u32)
+                .collect();
+            (n, xyz, tets)
+        } else {
+            // A random subset of two cubes' tets, each with its vertices in random order
+            // (orientation flips), one vertex maybe moved: touching along edges and
+            // vertices, inverted and overlapping tets are common.
+            let mut xyz = CUBE_XYZ.to_vec();
+            xyz.extend(CUBE_XYZ.chunks(3).flat_map(|p| [p[0] + 1.0, p[1], p[2]]));
+            let mut tets = Vec::new();
+            for (i, t) in CUBE_TETS.chunks(4).chain(CUBE_TETS.chunks(4)).enumerate() {
+                if rng.below(8) > 0 {
+                    let mut t = t.to_vec();
+                    if rng.below(3) == 0 {
+                        t.swap(rng.below(4) as usize, rng.below(4) as usize);
+                    }
+                    let shift = if i >= 6 { 8 } else { 0 };
+                    tets.extend(t.iter().map(|v| v + shift));
+                }
+            }
+            if rng.below(4) == 0 {
+                let v = rng.below(16) as usize;
+                xyz[3 * v] += 0.5;
+            }
+            if tets.is_empty() {
+                tets.extend_from_slice(&CUBE_TETS[..4]);
+            }
+            (16, xyz, tets)
+        };
+        let (coordinate, index) = (
+            rng.below(xyz.len() as u64) as usize,
+            rng.below(tets.len() as u64) as usize,
+        );
+        match rng.below(8) {
+            0 => xyz[coordinate] = f64::NAN,
+            1 => xyz[coordinate] = f64::NEG_INFINITY,
+            2 => tets[index] = n as u32,
+            3 => tets.clear(),
+            _ => {}
+        }
+        let case = format!("seed {seed}: xyz {xyz:?}, tets {tets:?}");
+        let mesh = match from_arrays(&xyz, &tets) {
+            Ok(mesh) => mesh,
+            Err((status, message)) => {
+                assert_eq!(status, MTCUT_STATUS_INVALID_MESH, "{case}: {message}");
+                continue;
+            }
+        };
+        accepted += 1;
+        let (valid, message) = validate(&mesh);
+        assert!(valid, "{case}: {message}");
+        let (mut volume, mut faces, mut area, mut count) = (0.0, 0usize, 0.0, 0usize);
+        let mut q: mtcut_quality = unsafe { std::mem::zeroed() };
+        q.struct_size = size_of::<mtcut_quality>();
+        let statuses = unsafe {
+            [
+                mtcut_mesh_volume(mesh.0, &mut volume),
+                mtcut_mesh_boundary(mesh.0, &mut faces, &mut area),
+                mtcut_mesh_quality(mesh.0, &mut q),
+                mtcut_mesh_component_count(mesh.0, &mut count),
+            ]
+        };
+        assert_eq!(statuses, [MTCUT_STATUS_OK; 4], "{case}");
+        assert!(volume > 0.0 && faces >= 4 && count >= 1, "{case}");
+        for c in 0..count {
+            let mut out = ptr::null_mut();
+            let s = unsafe { mtcut_mesh_extract_component(mesh.0, c, &mut out) };
+            assert_eq!(
+                s,
+                MTCUT_STATUS_OK,
+                "{case}: component {c}: {}",
+                last_error()
+            );
+            let part = Mesh(out);
+            assert!(validate(&part).0, "{case}: component {c}");
+        }
+    }
+    assert!(
+        accepted > 100,
+        "only {accepted} random meshes were valid: the generator is too harsh"
+    );
+}
