@@ -109,9 +109,20 @@ pub fn parse_tetgen(
             format!("dimension {dim}, expected 3"),
         ));
     }
-    let mut positions = Vec::with_capacity(n);
-    let mut attrs = vec![Vec::with_capacity(n); n_attr];
-    let mut markers = Vec::with_capacity(if n_marker > 0 { n } else { 0 });
+    // Header counts are checked against the text before anything is allocated: a damaged
+    // header must give a message, not an absurd allocation. A node line has at least 8
+    // characters, an attribute at least 2.
+    if n_attr > node_text.len() / 2 {
+        return Err(IoError::at_line(
+            &node_path,
+            hl,
+            format!("{n_attr} attributes per node: more than the file holds"),
+        ));
+    }
+    let rows = n.min(node_text.len() / 8);
+    let mut positions = Vec::with_capacity(rows);
+    let mut attrs = vec![Vec::with_capacity(rows); n_attr];
+    let mut markers = Vec::with_capacity(if n_marker > 0 { rows } else { 0 });
     let mut base = 0u64;
     for i in 0..n {
         let (ln, l) = lines.next().ok_or_else(|| {
@@ -183,9 +194,18 @@ pub fn parse_tetgen(
             format!("{per} nodes per tetrahedron; only linear (4-node) tetrahedra are supported"),
         ));
     }
-    let mut tets = Vec::with_capacity(m);
-    let mut eattrs = vec![Vec::with_capacity(m); n_eattr];
-    let mut tet_lines = Vec::with_capacity(m);
+    if n_eattr > ele_text.len() / 2 {
+        return Err(IoError::at_line(
+            &ele_path,
+            hl,
+            format!("{n_eattr} attributes per tetrahedron: more than the file holds"),
+        ));
+    }
+    // A tetrahedron line has at least 10 characters.
+    let rows = m.min(ele_text.len() / 10);
+    let mut tets = Vec::with_capacity(rows);
+    let mut eattrs = vec![Vec::with_capacity(rows); n_eattr];
+    let mut tet_lines = Vec::with_capacity(rows);
     let mut ebase = None;
     for i in 0..m {
         let (ln, l) = lines.next().ok_or_else(|| {
