@@ -183,15 +183,29 @@ static void deformation(const mtcut_mesh *mesh) {
   mtcut_mesh_free(copy);
 }
 
-/* Files: write the cube (TetGen .node/.ele) and read it back; then the user's file. */
+/* Files: write the cube as TetGen .node/.ele and as .vtu (with its attributes, for
+ * ParaView) and read both back; then the user's file. */
 static void files(const mtcut_mesh *mesh, const char *input, const char *dir) {
   char path[4096];
   mtcut_mesh *back = NULL, *user = NULL;
+  double material[6], expected[6];
+  size_t count = 0;
 
   snprintf(path, sizeof path, "%s/cube.node", dir);
   CHECK(mtcut_mesh_write(mesh, path));
   CHECK(mtcut_mesh_read(path, &back));
   VERIFY(mtcut_mesh_tet_count(back) == 6 && mtcut_mesh_vertex_count(back) == 8);
+  mtcut_mesh_free(back);
+
+  snprintf(path, sizeof path, "%s/cube.vtu", dir);
+  CHECK(mtcut_mesh_write_vtu(mesh, path));
+  CHECK(mtcut_mesh_read(path, &back));
+  CHECK(mtcut_mesh_attribute_count(back, MTCUT_LOCATION_VERTEX, &count));
+  VERIFY(count == 2);
+  CHECK(mtcut_mesh_copy_attribute(back, MTCUT_LOCATION_TET, "material", material, 6));
+  CHECK(mtcut_mesh_copy_attribute(mesh, MTCUT_LOCATION_TET, "material", expected, 6));
+  VERIFY(memcmp(material, expected, sizeof material) == 0);
+  printf("wrote %s (point and cell data) and read it back\n", path);
   mtcut_mesh_free(back);
 
   CHECK(mtcut_mesh_read(input, &user));

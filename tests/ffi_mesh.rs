@@ -867,3 +867,99 @@ fn random_arrays_never_panic_and_accepted_meshes_are_valid() {
         "only {accepted} random meshes were valid: the generator is too harsh"
     );
 }
+
+fn write_vtu(m: &Mesh, path: &std::path::Path) -> mtcut_status {
+    let c = CString::new(path.as_os_str().as_encoded_bytes()).unwrap();
+    unsafe { mtcut_mesh_write_vtu(m.0, c.as_ptr()) }
+}
+
+#[test]
+fn vtu_written_and_read_back_with_attributes() {
+    let m = cube();
+    let temperature: Vec<f64> = (0..8).map(|i| 0.5 * i as f64).collect();
+    let stress: Vec<f64> = (0..54).map(|i| i as f64 - 20.0).collect();
+    expect(
+        set(
+            &m,
+            MTCUT_LOCATION_VERTEX,
+            c"temperature",
+            &temperature,
+            8,
+            1,
+        ),
+        MTCUT_STATUS_OK,
+        "",
+        "",
+    );
+    expect(
+        set(&m, MTCUT_LOCATION_TET, c"stress", &stress, 6, 9),
+        MTCUT_STATUS_OK,
+        "",
+        "",
+    );
+    let dir = common::scratch("ffi-vtu");
+    expect(
+        write_vtu(&m, &dir.join("cube.vtu")),
+        MTCUT_STATUS_OK,
+        "",
+        "",
+    );
+    // mtcut_mesh_write picks the same writer from the extension.
+    expect(write(&m, &dir.join("same.vtu")), MTCUT_STATUS_OK, "", "");
+    for name in ["cube.vtu", "same.vtu"] {
+        let back = read(&dir.join(name)).expect("the .vtu reads back");
+        assert_eq!(vertices(&back), CUBE_XYZ);
+        assert_eq!(tets(&back), tets(&m));
+        assert_eq!(
+            column(&back, MTCUT_LOCATION_VERTEX, c"temperature"),
+            temperature
+        );
+        assert_eq!(column(&back, MTCUT_LOCATION_TET, c"stress"), stress);
+    }
+    let s = write_vtu(&m, &dir.join("missing-dir/cube.vtu"));
+    expect(
+        s,
+        MTCUT_STATUS_IO_ERROR,
+        "mtcut_mesh_write_vtu",
+        "missing-dir",
+    );
+    std::fs::write(
+        dir.join("broken.vtu"),
+        "<VTKFile type=\"UnstructuredGrid\">",
+    )
+    .unwrap();
+    let (s, msg) = read(&dir.join("broken.vtu")).err().unwrap();
+    assert_eq!(s, MTCUT_STATUS_PARSE_ERROR, "{msg}");
+    assert!(msg.contains("broken.vtu"), "{msg}");
+}
+
+/// A file written by VTK's own writer (appended raw binary, zlib), as a VTK-based host
+/// hands it over: c-examples/data/box.vtu (scripts/vtk/make_c_example_input.py).
+#[test]
+fn vtk_written_vtu_reads_with_its_arrays() {
+    let box_vtu = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("c-examples/data/box.vtu");
+    let m = read(&box_vtu).expect("VTK's box reads");
+    assert_eq!(unsafe { mtcut_mesh_vertex_count(m.0) }, 96);
+    assert_eq!(unsafe { mtcut_mesh_tet_count(m.0) }, 225);
+    let mut volume = 0.0;
+    expect(
+        unsafe { mtcut_mesh_volume(m.0, &mut volume) },
+        MTCUT_STATUS_OK,
+        "",
+        "",
+    );
+    assert!((volume - 2.0).abs() < 1e-12, "{volume}");
+    assert_eq!(
+        names(&m, MTCUT_LOCATION_VERTEX),
+        ["temperature", "displacement"]
+    );
+    assert_eq!(names(&m, MTCUT_LOCATION_TET), ["material"]);
+    let xyz = vertices(&m);
+    let temperature = column(&m, MTCUT_LOCATION_VERTEX, c"temperature");
+    for (p, t) in xyz.chunks(3).zip(&temperature) {
+        // The generator wrote 20 + 40 x as 32-bit floats.
+        assert!((t - (20.0 + 40.0 * p[0])).abs() < 1e-4, "{t} at {p:?}");
+    }
+    let material = column(&m, MTCUT_LOCATION_TET, c"material");
+    assert!(material.iter().all(|&v| v == 1.0 || v == 2.0));
+}

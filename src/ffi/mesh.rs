@@ -98,10 +98,11 @@ pub unsafe extern "C" fn mtcut_mesh_from_arrays(
     })
 }
 
-/// Reads a mesh file, the format chosen by the extension: `.node` or `.ele` (TetGen; the
-/// other file of the pair is read from beside it), and the other formats the library's
-/// reader knows. The mesh is checked as in `mtcut_mesh_from_arrays`; attributes stored in
-/// the file become attribute columns. Errors: `MTCUT_STATUS_IO_ERROR` (cannot open),
+/// Reads a mesh file, the format chosen by the extension: `.vtu` (VTK XML unstructured
+/// grid, every encoding and compressor VTK writes; tets only), `.node` or `.ele` (TetGen;
+/// the other file of the pair is read from beside it), `.mesh` (medit). The mesh is
+/// checked as in `mtcut_mesh_from_arrays`; the point and cell data of a `.vtu` become
+/// vertex and tet attribute columns. Errors: `MTCUT_STATUS_IO_ERROR` (cannot open),
 /// `MTCUT_STATUS_UNSUPPORTED_FORMAT`, `MTCUT_STATUS_PARSE_ERROR` (the message names the
 /// file and line), `MTCUT_STATUS_INVALID_MESH`. On success `*out` receives a new mesh.
 ///
@@ -121,8 +122,9 @@ pub unsafe extern "C" fn mtcut_mesh_read(
     })
 }
 
-/// Writes a mesh file, the format chosen by the extension: `.node` or `.ele` (TetGen;
-/// writes both files of the pair), and the other formats the library's writer knows.
+/// Writes a mesh file, the format chosen by the extension: `.vtu` (as
+/// `mtcut_mesh_write_vtu`), `.node` or `.ele` (TetGen; writes both files of the pair,
+/// without attributes).
 ///
 /// # Safety
 /// `mesh` must be a live mesh handle, `path` a NUL-terminated string.
@@ -139,8 +141,10 @@ pub unsafe extern "C" fn mtcut_mesh_write(
     })
 }
 
-/// Writes a VTK XML unstructured grid (`.vtu`, for ParaView and VTK), with the mesh's
-/// attribute columns as point and cell data.
+/// Writes a VTK XML unstructured grid (`.vtu`, for ParaView and VTK: binary appended
+/// data, zlib-compressed), with the mesh's attribute columns as point and cell data. The
+/// file name must end in `.vtu` (`MTCUT_STATUS_INVALID_ARGUMENT` otherwise), so that a
+/// file is never written under another format's name.
 ///
 /// # Safety
 /// `mesh` must be a live mesh handle, `path` a NUL-terminated string.
@@ -162,7 +166,7 @@ pub unsafe extern "C" fn mtcut_mesh_write_vtu(
                 path.display()
             )));
         }
-        crate::io::write_mesh(&path, mesh)?;
+        crate::io::write_vtu(&path, mesh, &crate::io::VtuOptions::DEFAULT)?;
         Ok(())
     })
 }
