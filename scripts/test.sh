@@ -9,8 +9,9 @@ step() { printf '\n==> %s\n' "$*"; }
 
 # System packages the tests use: VTK (C++ and Python) and TetGen for cross-checks and the
 # C/C++ examples, CMake for those examples, ParaView (pvbatch) under Xvfb for what a user
-# opens. `--no-install-recommends` matters: paraview's recommends would remove libvtk9-dev.
-APT_PACKAGES=(cmake pkg-config g++ libvtk9-dev libtet1.5-dev tetgen python3-vtk9 paraview xvfb xauth)
+# opens; valgrind and binutils (readelf, nm) for the C API checks. `--no-install-recommends`
+# matters: paraview's recommends would remove libvtk9-dev.
+APT_PACKAGES=(cmake pkg-config g++ binutils valgrind libvtk9-dev libtet1.5-dev tetgen python3-vtk9 paraview xvfb xauth)
 missing=()
 for p in "${APT_PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
@@ -35,6 +36,11 @@ for c in rustfmt clippy; do
   fi
 done
 
+# The pinned cbindgen: tests/ffi_header.rs regenerates the C header with it and fails when
+# the checked-in include/mtcut.h is stale (cargo install, about a minute, when missing).
+step "cbindgen $(cat scripts/cbindgen-version)"
+scripts/gen-header.sh --install-cbindgen
+
 step "cargo fmt --check"
 cargo fmt --all -- --check
 
@@ -43,5 +49,10 @@ cargo clippy --locked --all-targets -- -D warnings
 
 step "cargo test (unit, integration, CLI, VTK cross-checks)"
 cargo test --locked
+
+# One release build of the library, installed into a temporary prefix that the C/C++
+# examples (under ctest and valgrind) and the CMake and pkg-config consumers use.
+step "C API: install, examples, consumers, valgrind (scripts/test-c-api.sh)"
+scripts/test-c-api.sh
 
 step "all checks passed"

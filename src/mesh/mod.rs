@@ -10,6 +10,7 @@ mod attributes;
 mod boundary;
 mod ids;
 mod quality;
+mod submesh;
 pub mod tables;
 mod validate;
 

@@ -427,8 +427,8 @@ fn check_hanging(pos: &[DVec3], boundary: &[[VertexId; 3]], r: &mut ValidationRe
     for (v, fi) in hits {
         r.add(ViolationKind::HangingVertex, || {
             format!(
-                "vertex {v} lies on boundary face {:?}",
-                boundary[fi as usize]
+                "vertex {v} lies on boundary face {}",
+                vertex_list(&boundary[fi as usize])
             )
         });
     }
