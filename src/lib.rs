@@ -24,9 +24,15 @@
 //! ## Layers (dependencies point down only)
 //!
 //! `geom` (predicates, planes) ← `mesh` (TetMesh, tables, adjacency, validation) ← `io`, `mt`
-//! (the multiresolution model: build, extract, validate, `.mt` files).
+//! (the multiresolution model: build, extract, validate, `.mt` files); [`ffi`], the C ABI,
+//! sits on top and is the only module allowed `unsafe` code.
 //! See ARCHITECTURE.md.
 
+#![deny(unsafe_code)]
+
+// The C ABI dereferences the caller's pointers: that is its whole job, and only its job.
+#[allow(unsafe_code)]
+pub mod ffi;
 pub mod geom;
 pub mod io;
 pub mod mesh;
