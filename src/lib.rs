@@ -23,8 +23,9 @@
 //!
 //! ## Layers (dependencies point down only)
 //!
-//! `geom` (predicates, planes) ← `mesh` (TetMesh, tables, adjacency, validation) ← `io`;
-//! [`ffi`], the C ABI, sits on top and is the only module allowed `unsafe` code.
+//! `geom` (predicates, planes) ← `mesh` (TetMesh, tables, adjacency, validation) ← `io`, `mt`
+//! (the multiresolution model: build, extract, validate, `.mt` files); [`ffi`], the C ABI,
+//! sits on top and is the only module allowed `unsafe` code.
 //! See ARCHITECTURE.md.
 
 #![deny(unsafe_code)]
@@ -35,3 +36,4 @@ pub mod ffi;
 pub mod geom;
 pub mod io;
 pub mod mesh;
+pub mod mt;

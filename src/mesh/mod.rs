@@ -174,6 +174,21 @@ impl TetMesh {
         Ok((mesh, report))
     }
 
+    /// A mesh from arrays the library built itself and knows to be consistent (indices in
+    /// range); no checks beyond a debug assertion. Callers validate in their tests.
+    pub(crate) fn from_parts(positions: Vec<DVec3>, tets: Vec<Tet>) -> TetMesh {
+        debug_assert!(
+            tets.iter()
+                .all(|t| t.iter().all(|v| v.idx() < positions.len()))
+        );
+        TetMesh {
+            positions,
+            tets,
+            point_data: Attributes::new(),
+            cell_data: Attributes::new(),
+        }
+    }
+
     pub fn nb_vertices(&self) -> usize {
         self.positions.len()
     }

@@ -1,0 +1,691 @@
+//! # The Multi-Tessellation (paper §2)
+//!
+//! This layer owns the multiresolution model: how it is stored ([`Mt`]), built by
+//! simplifying a [`TetMesh`](crate::mesh::TetMesh) ([`Mt::build`]), checked ([`Mt::validate`]), cut into
+//! variable-resolution meshes ([`Mt::extract`], [`Frontier`]) and saved ([`Mt::save`],
+//! [`Mt::load`]). It uses `geom` and `mesh` only; it knows nothing of cuts, files other
+//! than its own `.mt` format, or the C ABI.
+//!
+//! ## The store
+//!
+//! * **One vertex pool.** Half-edge collapses keep vertex positions, so every level of detail
+//!   indexes the input's vertices (pool vertex `i` is input vertex `i`). Per-vertex
+//!   attributes of the input live here, one row per pool vertex.
+//! * **One tet pool** holding every tet of every level, each as its four vertex ids — plus
+//!   *ghost tets*: for every boundary triangle `(a, b, c)` (outward) of every level, the tet
+//!   `(a, b, c, GHOST)` joining it to a virtual vertex outside the mesh. Ghosts make the
+//!   mesh a closed complex, so a collapse that moves the boundary still has a floor and a
+//!   ceiling with the same boundary (the MT condition of paper §2, which would otherwise
+//!   fail on the boundary), and the DAG records the dependencies that boundary changes
+//!   create. Ghosts are never extracted. Per-tet attributes of the input live here too, one
+//!   row per pool tet, inherited by the tets that replace them.
+//! * **Arcs.** The pool is ordered so that the tets created by fragment `i` and destroyed by
+//!   fragment `j` are contiguous: that run is the paper's arc `(Σi, Σj, Fj ∩ Σi)`, stored as
+//!   its start, creator and destroyer. Each tet therefore has exactly one creator and one
+//!   destroyer ([`Mt::tet_creator`], [`Mt::tet_destroyer`], by binary search) without a
+//!   per-tet column: at about three pool tets per input tet, two `u32` columns would cost
+//!   24 bytes per input tet, against a budget of 100 for the whole model.
+//! * **Fragments** (DAG nodes): kind (root, collapse, drain), error, level (longest path
+//!   from a root), bounding box of floor and ceiling, and their out- and in-arcs.
+//!   The root creates the input mesh (and its ghosts); the drain destroys the coarsest mesh.
+//!   Several root/drain pairs may coexist ([`Mt::roots`], [`Mt::drains`]): a body cut
+//!   through becomes independent MTs within one store.
+//!
+//! What the store keeps is only the primary data (pool, arcs, kinds, errors); levels,
+//! bounding boxes and the arc lists are derived when an `Mt` is assembled, so the file
+//! format cannot make them inconsistent.
+//!
+//! ## Errors and frontiers
+//!
+//! Each fragment has one error, at least the errors of the fragments it depends on (the
+//! creators of its floor): errors grow along the DAG, so "every fragment of error ≤ ε
+//! applied" is a consistent frontier and threshold extraction is well defined.
+//! A *frontier* is a set `S` of applied fragments closed under dependencies (roots always
+//! in, drains never); its mesh is the set of arcs from `S` to the rest.
+//!
+//! ## Designed for cuts (paper §3)
+//!
+//! Cuts will append tets to the pool and arcs to the arc table (the table stays sorted by
+//! pool position, so the binary search from tet to arc keeps working), append vertices to
+//! the pool with interpolated attribute rows, split fragments by appending fragment
+//! records, and rebuild the arc lists. [`Mt::canonical_form`] compares two MTs independently
+//! of vertex, tet and fragment numbering.
+
+pub mod build;
+pub mod bvh;
+pub mod canonical;
+mod csr;
+pub mod error;
+pub mod extract;
+pub mod file;
+pub mod frontier;
+pub mod validate;
+
+pub use build::{BuildError, BuildOptions, BuildPhase, BuildProgress, BuildStats, Rejections};
+pub use bvh::{Bvh, FragmentBvh, Region};
+pub use canonical::{CanonicalFragment, CanonicalMt, TetKey};
+pub use error::{BoundaryError, ErrorMetric, QualityError, TetError, TetSample, VolumeError};
+pub use extract::{
+    CELL_ERROR, CELL_FRAGMENT, CELL_LEVEL, ExtractError, ExtractOptions, ExtractStats, Extraction,
+    Focus, POINT_VERTEX,
+};
+pub use file::{MT_FILE_VERSION, MT_MAGIC, MtFileError, MtFileErrorKind};
+pub use frontier::{Frontier, FrontierUpdate};
+pub use validate::{MtValidationReport, MtViolation, MtViolationKind};
+
+use crate::geom::{Aabb, DVec3};
+use crate::mesh::{Attributes, FragmentId, Tet, TetId, VertexId};
+use csr::Csr;
+pub use csr::{Row as ArcList, RowIter as ArcIter};
+use rayon::prelude::*;
+use std::ops::Range;
+
+/// The virtual vertex outside the mesh that ghost tets join boundary triangles to. It has
+/// no position; a ghost tet is `(a, b, c, GHOST)` with `(a, b, c)` the boundary triangle,
+/// oriented outwards (so the ghost is "positively oriented" towards the outside).
+pub const GHOST: VertexId = VertexId(u32::MAX - 1);
+
+/// Largest number of vertices, tets, arcs or fragments an MT may hold (ids are `u32`, and
+/// the two largest values are reserved for [`GHOST`] and `INVALID`).
+pub const MAX_ELEMENTS: usize = (u32::MAX - 2) as usize;
+
+/// What a DAG node is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FragmentKind {
+    /// Creates the full-resolution input mesh; always applied.
+    Root,
+    /// One simplification step: destroys its floor, creates its ceiling.
+    Collapse,
+    /// Destroys the coarsest mesh; never applied.
+    Drain,
+}
+
+impl FragmentKind {
+    pub(crate) fn code(self) -> u8 {
+        match self {
+            FragmentKind::Root => 0,
+            FragmentKind::Collapse => 1,
+            FragmentKind::Drain => 2,
+        }
+    }
+
+    pub(crate) fn from_code(c: u8) -> Option<FragmentKind> {
+        match c {
+            0 => Some(FragmentKind::Root),
+            1 => Some(FragmentKind::Collapse),
+            2 => Some(FragmentKind::Drain),
+            _ => None,
+        }
+    }
+}
+
+/// How an MT was made: kept in the `.mt` file and shown by `mtcut info`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MtInfo {
+    /// Name of the error metric ([`TetError::name`]).
+    pub error_metric: String,
+    /// Boundary tolerance, relative to the input's bounding-box diagonal.
+    pub boundary_tolerance: f64,
+    /// Whether boundary feature edges and corners were kept.
+    pub preserve_features: bool,
+    /// Dihedral angle (degrees) above which a boundary edge counted as a feature.
+    pub feature_angle_degrees: f64,
+    /// Tets of the input mesh.
+    pub input_tets: usize,
+}
+
+/// The primary data of an MT, from which [`Mt::assemble`] derives the rest.
+pub(crate) struct MtParts {
+    pub positions: Vec<DVec3>,
+    pub point_data: Attributes,
+    pub tets: Vec<Tet>,
+    pub cell_data: Attributes,
+    pub arc_start: Vec<u32>,
+    pub arc_creator: Vec<FragmentId>,
+    pub arc_destroyer: Vec<FragmentId>,
+    pub kind: Vec<FragmentKind>,
+    pub error: Vec<f64>,
+    pub info: MtInfo,
+}
+
+/// A Multi-Tessellation: every level of detail of a tet mesh and the DAG that says how they
+/// fit together. See the [module documentation](self) for the layout.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mt {
+    positions: Vec<DVec3>,
+    point_data: Attributes,
+    tets: Vec<Tet>,
+    cell_data: Attributes,
+    /// `arc_start[a]..arc_start[a + 1]` are the pool tets of arc `a`; one extra entry.
+    arc_start: Vec<u32>,
+    arc_creator: Vec<FragmentId>,
+    arc_destroyer: Vec<FragmentId>,
+    kind: Vec<FragmentKind>,
+    error: Vec<f64>,
+    info: MtInfo,
+    // Derived by `assemble`.
+    level: Vec<u32>,
+    bbox: Vec<BoxF32>,
+    out_arcs: Csr,
+    in_arcs: Csr,
+    roots: Vec<FragmentId>,
+    drains: Vec<FragmentId>,
+}
+
+impl Mt {
+    /// Checks the structure of `parts` (everything later code indexes with) and derives
+    /// levels, boxes and arc lists. Errors say what is inconsistent; they are reported as
+    /// file corruption by the loader and are internal bugs anywhere else.
+    pub(crate) fn assemble(p: MtParts) -> Result<Mt, String> {
+        let nv = p.positions.len();
+        let nt = p.tets.len();
+        let na = p.arc_creator.len();
+        let nf = p.kind.len();
+        for (what, n) in [
+            ("vertices", nv),
+            ("tets", nt),
+            ("arcs", na),
+            ("fragments", nf),
+        ] {
+            if n > MAX_ELEMENTS {
+                return Err(format!(
+                    "{n} {what}, more than the {MAX_ELEMENTS} supported"
+                ));
+            }
+        }
+        if p.arc_destroyer.len() != na || p.arc_start.len() != na + 1 {
+            return Err(format!(
+                "arc columns of different lengths ({} starts, {} creators, {} destroyers)",
+                p.arc_start.len(),
+                na,
+                p.arc_destroyer.len()
+            ));
+        }
+        if p.error.len() != nf {
+            return Err(format!("{} errors for {nf} fragments", p.error.len()));
+        }
+        if p.arc_start[0] != 0 || p.arc_start[na] as usize != nt {
+            return Err(format!(
+                "arcs cover tets {}..{} of a pool of {nt}",
+                p.arc_start[0], p.arc_start[na]
+            ));
+        }
+        if let Some(a) = (0..na).find(|&a| p.arc_start[a] > p.arc_start[a + 1]) {
+            return Err(format!("arc {a} ends before it starts"));
+        }
+        for a in 0..na {
+            let (c, d) = (p.arc_creator[a], p.arc_destroyer[a]);
+            if c.idx() >= nf || d.idx() >= nf {
+                return Err(format!(
+                    "arc {a} joins fragments {c} and {d}, but there are {nf}"
+                ));
+            }
+            if c == d {
+                return Err(format!("arc {a} goes from fragment {c} to itself"));
+            }
+        }
+        for (t, tet) in p.tets.iter().enumerate() {
+            for (k, v) in tet.iter().enumerate() {
+                let ok = v.idx() < nv || (*v == GHOST && k == 3);
+                if !ok {
+                    return Err(format!("tet {t} uses vertex {v}, but the pool has {nv}"));
+                }
+            }
+        }
+        if let Some(c) = p.point_data.mismatched(nv) {
+            return Err(format!(
+                "point data '{}' has {} rows for {nv} vertices",
+                c.name,
+                c.len()
+            ));
+        }
+        if let Some(c) = p.cell_data.mismatched(nt) {
+            return Err(format!(
+                "cell data '{}' has {} rows for {nt} tets",
+                c.name,
+                c.len()
+            ));
+        }
+        let out_arcs =
+            Csr::from_pairs(nf, (0..na as u32).map(|a| (p.arc_creator[a as usize].0, a)));
+        let mut p = p;
+        p.arc_start.shrink_to_fit();
+        p.arc_creator.shrink_to_fit();
+        p.arc_destroyer.shrink_to_fit();
+        p.tets.shrink_to_fit();
+        p.positions.shrink_to_fit();
+        p.kind.shrink_to_fit();
+        p.error.shrink_to_fit();
+        let in_arcs = Csr::from_pairs(
+            nf,
+            (0..na as u32).map(|a| (p.arc_destroyer[a as usize].0, a)),
+        );
+        for f in 0..nf {
+            let e = p.error[f];
+            match p.kind[f] {
+                FragmentKind::Root if !in_arcs.row(f).is_empty() => {
+                    return Err(format!("root fragment {f} destroys tets"));
+                }
+                FragmentKind::Drain if !out_arcs.row(f).is_empty() => {
+                    return Err(format!("drain fragment {f} creates tets"));
+                }
+                FragmentKind::Drain if e.is_nan() => {
+                    return Err(format!("fragment {f} has error NaN"));
+                }
+                FragmentKind::Root | FragmentKind::Collapse if !(e.is_finite() && e >= 0.0) => {
+                    return Err(format!("fragment {f} has error {e}"));
+                }
+                _ => {}
+            }
+        }
+        let level = levels(nf, &p.arc_creator, &in_arcs)
+            .ok_or_else(|| "the DAG has a cycle".to_string())?;
+        let arc_box = |a: u32| {
+            let a = a as usize;
+            let mut b = Aabb::EMPTY;
+            for t in &p.tets[p.arc_start[a] as usize..p.arc_start[a + 1] as usize] {
+                for v in t.iter().filter(|v| **v != GHOST) {
+                    b.grow(p.positions[v.idx()]);
+                }
+            }
+            b
+        };
+        let bbox: Vec<BoxF32> = (0..nf)
+            .into_par_iter()
+            .map(|f| {
+                let b = out_arcs
+                    .row(f)
+                    .into_iter()
+                    .chain(in_arcs.row(f))
+                    .fold(Aabb::EMPTY, |b, a| b.union(&arc_box(a)));
+                BoxF32::enclosing(&b)
+            })
+            .collect();
+        let of_kind = |k: FragmentKind| -> Vec<FragmentId> {
+            (0..nf)
+                .filter(|&f| p.kind[f] == k)
+                .map(FragmentId::from_usize)
+                .collect()
+        };
+        let roots = of_kind(FragmentKind::Root);
+        let drains = of_kind(FragmentKind::Drain);
+        Ok(Mt {
+            positions: p.positions,
+            point_data: p.point_data,
+            tets: p.tets,
+            cell_data: p.cell_data,
+            arc_start: p.arc_start,
+            arc_creator: p.arc_creator,
+            arc_destroyer: p.arc_destroyer,
+            kind: p.kind,
+            error: p.error,
+            info: p.info,
+            level,
+            bbox,
+            out_arcs,
+            in_arcs,
+            roots,
+            drains,
+        })
+    }
+
+    // ---- vertex pool ----
+
+    pub fn nb_vertices(&self) -> usize {
+        self.positions.len()
+    }
+
+    pub fn positions(&self) -> &[DVec3] {
+        &self.positions
+    }
+
+    #[inline]
+    pub fn position(&self, v: VertexId) -> DVec3 {
+        self.positions[v.idx()]
+    }
+
+    /// Per-vertex attributes, one row per pool vertex (the input's point data).
+    pub fn point_data(&self) -> &Attributes {
+        &self.point_data
+    }
+
+    // ---- tet pool ----
+
+    /// Tets in the pool: every level, ghosts included.
+    pub fn nb_tets(&self) -> usize {
+        self.tets.len()
+    }
+
+    pub fn tets(&self) -> &[Tet] {
+        &self.tets
+    }
+
+    #[inline]
+    pub fn tet(&self, t: TetId) -> Tet {
+        self.tets[t.idx()]
+    }
+
+    /// Whether `t` is a ghost tet (a boundary triangle joined to [`GHOST`]).
+    #[inline]
+    pub fn is_ghost(&self, t: TetId) -> bool {
+        self.tets[t.idx()][3] == GHOST
+    }
+
+    /// Per-tet attributes, one row per pool tet (inherited from the input's cell data; 0 on
+    /// ghosts, which are never extracted).
+    pub fn cell_data(&self) -> &Attributes {
+        &self.cell_data
+    }
+
+    // ---- arcs ----
+
+    pub fn nb_arcs(&self) -> usize {
+        self.arc_creator.len()
+    }
+
+    /// The pool tets of arc `a` (contiguous).
+    #[inline]
+    pub fn arc_tets(&self, a: usize) -> Range<usize> {
+        self.arc_start[a] as usize..self.arc_start[a + 1] as usize
+    }
+
+    #[inline]
+    pub fn arc_creator(&self, a: usize) -> FragmentId {
+        self.arc_creator[a]
+    }
+
+    #[inline]
+    pub fn arc_destroyer(&self, a: usize) -> FragmentId {
+        self.arc_destroyer[a]
+    }
+
+    /// The arc holding tet `t` (binary search over the arc starts).
+    pub fn tet_arc(&self, t: TetId) -> usize {
+        self.arc_start.partition_point(|&s| s <= t.0) - 1
+    }
+
+    /// The fragment that created tet `t`.
+    pub fn tet_creator(&self, t: TetId) -> FragmentId {
+        self.arc_creator[self.tet_arc(t)]
+    }
+
+    /// The fragment that destroys tet `t`.
+    pub fn tet_destroyer(&self, t: TetId) -> FragmentId {
+        self.arc_destroyer[self.tet_arc(t)]
+    }
+
+    // ---- fragments ----
+
+    pub fn nb_fragments(&self) -> usize {
+        self.kind.len()
+    }
+
+    #[inline]
+    pub fn fragment_kind(&self, f: FragmentId) -> FragmentKind {
+        self.kind[f.idx()]
+    }
+
+    /// The fragment's error: at least the errors of the fragments it depends on; 0 for
+    /// roots, +∞ for drains.
+    #[inline]
+    pub fn fragment_error(&self, f: FragmentId) -> f64 {
+        self.error[f.idx()]
+    }
+
+    /// Length of the longest path from a root to `f` (roots: 0).
+    #[inline]
+    pub fn fragment_level(&self, f: FragmentId) -> u32 {
+        self.level[f.idx()]
+    }
+
+    /// Bounding box of the fragment's floor and ceiling (ghost vertex excluded).
+    #[inline]
+    pub fn fragment_bbox(&self, f: FragmentId) -> Aabb {
+        self.bbox[f.idx()].to_aabb()
+    }
+
+    /// Arcs leaving `f`: its ceiling, grouped by the fragment that destroys each part.
+    #[inline]
+    pub fn out_arcs(&self, f: FragmentId) -> ArcList<'_> {
+        self.out_arcs.row(f.idx())
+    }
+
+    /// Arcs entering `f`: its floor, grouped by the fragment that created each part.
+    #[inline]
+    pub fn in_arcs(&self, f: FragmentId) -> ArcList<'_> {
+        self.in_arcs.row(f.idx())
+    }
+
+    /// The tets `f` creates (its ceiling), ghosts included.
+    pub fn created_tets(&self, f: FragmentId) -> impl Iterator<Item = TetId> + '_ {
+        self.out_arcs(f)
+            .into_iter()
+            .flat_map(|a| self.arc_tets(a as usize).map(TetId::from_usize))
+    }
+
+    /// The tets `f` destroys (its floor), ghosts included.
+    pub fn destroyed_tets(&self, f: FragmentId) -> impl Iterator<Item = TetId> + '_ {
+        self.in_arcs(f)
+            .into_iter()
+            .flat_map(|a| self.arc_tets(a as usize).map(TetId::from_usize))
+    }
+
+    /// The fragments creating the full-resolution meshes (one per independent MT).
+    pub fn roots(&self) -> &[FragmentId] {
+        &self.roots
+    }
+
+    /// The fragments destroying the coarsest meshes (one per independent MT).
+    pub fn drains(&self) -> &[FragmentId] {
+        &self.drains
+    }
+
+    /// Number of independent MTs held in this store.
+    pub fn nb_components(&self) -> usize {
+        self.roots.len()
+    }
+
+    /// The longest root-to-drain path.
+    pub fn dag_depth(&self) -> u32 {
+        self.drains
+            .iter()
+            .map(|d| self.level[d.idx()])
+            .max()
+            .unwrap_or(0)
+    }
+
+    pub fn info(&self) -> &MtInfo {
+        &self.info
+    }
+
+    /// Number of non-ghost tets in the floors of the drains: the coarsest mesh's size.
+    pub fn coarsest_tets(&self) -> usize {
+        self.drains
+            .iter()
+            .flat_map(|&d| self.destroyed_tets(d))
+            .filter(|&t| !self.is_ghost(t))
+            .count()
+    }
+
+    /// Bytes of heap memory held by this MT (capacities, so what the allocator gave).
+    pub fn heap_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let attrs = |a: &Attributes| -> usize {
+            a.iter()
+                .map(|c| c.values.capacity() * 8 + c.name.capacity())
+                .sum()
+        };
+        self.positions.capacity() * size_of::<DVec3>()
+            + attrs(&self.point_data)
+            + self.tets.capacity() * size_of::<Tet>()
+            + attrs(&self.cell_data)
+            + self.arc_start.capacity() * 4
+            + self.arc_creator.capacity() * 4
+            + self.arc_destroyer.capacity() * 4
+            + self.kind.capacity() * size_of::<FragmentKind>()
+            + self.error.capacity() * 8
+            + self.info.error_metric.capacity()
+            + self.level.capacity() * 4
+            + self.bbox.capacity() * size_of::<BoxF32>()
+            + self.out_arcs.heap_bytes()
+            + self.in_arcs.heap_bytes()
+            + (self.roots.capacity() + self.drains.capacity()) * 4
+    }
+
+    /// The numbers `mtcut info` prints.
+    pub fn summary(&self) -> MtSummary {
+        let ghosts = self.tets.iter().filter(|t| t[3] == GHOST).count();
+        let max_error = self
+            .error
+            .iter()
+            .copied()
+            .filter(|e| e.is_finite())
+            .fold(0.0, f64::max);
+        let bytes = self.heap_bytes();
+        MtSummary {
+            vertices: self.nb_vertices(),
+            pool_tets: self.nb_tets() - ghosts,
+            ghost_tets: ghosts,
+            arcs: self.nb_arcs(),
+            fragments: self.nb_fragments(),
+            components: self.nb_components(),
+            dag_depth: self.dag_depth(),
+            input_tets: self.info.input_tets,
+            coarsest_tets: self.coarsest_tets(),
+            max_error,
+            heap_bytes: bytes,
+            bytes_per_input_tet: bytes as f64 / self.info.input_tets.max(1) as f64,
+            bbox: Aabb::from_points(&self.positions),
+            info: self.info.clone(),
+        }
+    }
+}
+
+/// A bounding box in single precision, rounded outwards so it still contains what the
+/// double-precision box contained: fragment boxes only steer region queries, and half the
+/// size matters at a few hundred thousand fragments.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct BoxF32 {
+    min: [f32; 3],
+    max: [f32; 3],
+}
+
+impl BoxF32 {
+    pub(crate) fn enclosing(b: &Aabb) -> BoxF32 {
+        if b.is_empty() {
+            return BoxF32 {
+                min: [f32::INFINITY; 3],
+                max: [f32::NEG_INFINITY; 3],
+            };
+        }
+        let down = |x: f64| {
+            let y = x as f32;
+            if (y as f64) > x { step_down(y) } else { y }
+        };
+        let up = |x: f64| {
+            let y = x as f32;
+            if (y as f64) < x { -step_down(-y) } else { y }
+        };
+        BoxF32 {
+            min: b.min.to_array().map(down),
+            max: b.max.to_array().map(up),
+        }
+    }
+
+    pub(crate) fn to_aabb(self) -> Aabb {
+        Aabb {
+            min: DVec3::from_array(self.min.map(f64::from)),
+            max: DVec3::from_array(self.max.map(f64::from)),
+        }
+    }
+}
+
+/// The largest `f32` below the finite `y` (`f32::next_down`, which needs Rust 1.86).
+fn step_down(y: f32) -> f32 {
+    if y == 0.0 {
+        -f32::from_bits(1)
+    } else if y > 0.0 {
+        f32::from_bits(y.to_bits() - 1)
+    } else {
+        f32::from_bits(y.to_bits() + 1)
+    }
+}
+
+/// Levels (longest path from a root) by Kahn's algorithm; `None` when the arcs have a cycle.
+fn levels(nf: usize, arc_creator: &[FragmentId], in_arcs: &Csr) -> Option<Vec<u32>> {
+    let mut pending: Vec<u32> = (0..nf).map(|f| in_arcs.row(f).len() as u32).collect();
+    let mut level = vec![0u32; nf];
+    // Successor lists are the out-arcs; build them here from the in-arcs to stay independent
+    // of the caller's CSR (this also serves `validate`).
+    let out = Csr::from_pairs(
+        nf,
+        (0..nf as u32).flat_map(|f| {
+            in_arcs
+                .row(f as usize)
+                .into_iter()
+                .map(move |a| (arc_creator[a as usize].0, f))
+        }),
+    );
+    let mut ready: Vec<u32> = (0..nf as u32)
+        .filter(|&f| pending[f as usize] == 0)
+        .collect();
+    let mut done = 0;
+    while let Some(f) = ready.pop() {
+        done += 1;
+        for g in out.row(f as usize) {
+            let g = g as usize;
+            level[g] = level[g].max(level[f as usize] + 1);
+            pending[g] -= 1;
+            if pending[g] == 0 {
+                ready.push(g as u32);
+            }
+        }
+    }
+    (done == nf).then_some(level)
+}
+
+/// What `mtcut info` prints about an MT (see [`MtSummary::to_json`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MtSummary {
+    pub vertices: usize,
+    /// Non-ghost tets in the pool (all levels).
+    pub pool_tets: usize,
+    pub ghost_tets: usize,
+    pub arcs: usize,
+    /// Fragments, root and drain included.
+    pub fragments: usize,
+    pub components: usize,
+    pub dag_depth: u32,
+    pub input_tets: usize,
+    pub coarsest_tets: usize,
+    /// Largest finite fragment error.
+    pub max_error: f64,
+    pub heap_bytes: usize,
+    pub bytes_per_input_tet: f64,
+    pub bbox: Aabb,
+    pub info: MtInfo,
+}
+
+impl MtSummary {
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "vertices": self.vertices,
+            "pool_tets": self.pool_tets,
+            "ghost_tets": self.ghost_tets,
+            "arcs": self.arcs,
+            "fragments": self.fragments,
+            "components": self.components,
+            "dag_depth": self.dag_depth,
+            "input_tets": self.input_tets,
+            "coarsest_tets": self.coarsest_tets,
+            "max_error": self.max_error,
+            "heap_bytes": self.heap_bytes,
+            "bytes_per_input_tet": self.bytes_per_input_tet,
+            "bbox": [self.bbox.min.to_array(), self.bbox.max.to_array()],
+            "error_metric": self.info.error_metric,
+            "boundary_tolerance": self.info.boundary_tolerance,
+            "preserve_features": self.info.preserve_features,
+            "feature_angle_degrees": self.info.feature_angle_degrees,
+        })
+    }
+}

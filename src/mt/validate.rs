@@ -1,0 +1,332 @@
+//! `Mt::validate`: every MT invariant of DESIGN.md §5, exhaustively, each violation class
+//! with its count and first examples.
+//!
+//! * the store is consistent (ids in range, arcs partition the pool, columns agree);
+//! * each tet has exactly one creator and one destroyer (each lies in exactly one arc), and
+//!   no arc is empty;
+//! * the DAG is acyclic and the stored levels are its longest paths; roots have no floor,
+//!   drains no ceiling, every collapse both;
+//! * errors: roots 0, drains +∞, and never decreasing along an arc;
+//! * every non-ghost pool tet is positively oriented (exact);
+//! * every fragment's floor and ceiling are each conforming and have the same oriented
+//!   boundary triangles (ghosts included, so they cover the same region of the closed
+//!   complex); a root's ceiling and a drain's floor are closed;
+//! * fragment boxes are the boxes of their floor and ceiling;
+//! * the finest and coarsest frontiers are valid meshes ([`crate::mesh::TetMesh::validate`]).
+
+use super::extract::ExtractOptions;
+use super::{FragmentKind, GHOST, Mt};
+use crate::geom::{Aabb, Sign, orient3d};
+use crate::mesh::tables::TET_FACES;
+use crate::mesh::{FragmentId, Tet, TetId};
+use std::fmt;
+
+const EXAMPLES: usize = 5;
+
+/// A class of MT invariant violation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MtViolationKind {
+    /// Inconsistent store (ids out of range, arcs not partitioning the pool...).
+    Structure,
+    EmptyArc,
+    Cycle,
+    LevelMismatch,
+    /// A root with a floor, a drain with a ceiling, a collapse without floor or ceiling,
+    /// or no root/drain at all.
+    FragmentKind,
+    ErrorValue,
+    ErrorNotMonotone,
+    TetOrientation,
+    /// Within a floor or a ceiling, a face shared by two tets with the same orientation.
+    FragmentNotConforming,
+    /// Floor and ceiling with different boundary triangles.
+    FragmentBoundary,
+    BboxMismatch,
+    /// The finest or coarsest frontier is not a valid mesh.
+    Frontier,
+}
+
+/// One violation class: how many instances, and the first few.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MtViolation {
+    pub kind: MtViolationKind,
+    pub count: usize,
+    pub examples: Vec<String>,
+}
+
+/// Everything [`Mt::validate`] found.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MtValidationReport {
+    pub violations: Vec<MtViolation>,
+}
+
+impl MtValidationReport {
+    fn add(&mut self, kind: MtViolationKind, example: impl FnOnce() -> String) {
+        match self.violations.iter_mut().find(|v| v.kind == kind) {
+            Some(v) => {
+                v.count += 1;
+                if v.examples.len() < EXAMPLES {
+                    v.examples.push(example());
+                }
+            }
+            None => self.violations.push(MtViolation {
+                kind,
+                count: 1,
+                examples: vec![example()],
+            }),
+        }
+    }
+
+    pub fn is_valid(&self) -> bool {
+        self.violations.is_empty()
+    }
+
+    pub fn count(&self, kind: MtViolationKind) -> usize {
+        self.violations
+            .iter()
+            .find(|v| v.kind == kind)
+            .map_or(0, |v| v.count)
+    }
+}
+
+impl fmt::Display for MtValidationReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.violations.is_empty() {
+            return write!(f, "valid MT");
+        }
+        let lines: Vec<String> = self
+            .violations
+            .iter()
+            .map(|v| {
+                format!(
+                    "{} × {:?} (first: {})",
+                    v.count,
+                    v.kind,
+                    v.examples.join("; ")
+                )
+            })
+            .collect();
+        write!(f, "invalid MT: {}", lines.join("; "))
+    }
+}
+
+/// An oriented triangle, rotated so its smallest vertex comes first (two rotations of the
+/// same oriented triangle compare equal; the opposite orientation does not).
+fn oriented(a: u32, b: u32, c: u32) -> [u32; 3] {
+    if a < b && a < c {
+        [a, b, c]
+    } else if b < c {
+        [b, c, a]
+    } else {
+        [c, a, b]
+    }
+}
+
+fn flip(f: [u32; 3]) -> [u32; 3] {
+    oriented(f[0], f[2], f[1])
+}
+
+/// The outward faces of `tets` that are not matched by an opposite face of another of
+/// them (the boundary), sorted; and the number of faces met twice with one orientation.
+fn boundary_of(tets: impl Iterator<Item = Tet>, buf: &mut Vec<[u32; 3]>) -> (Vec<[u32; 3]>, usize) {
+    buf.clear();
+    for t in tets {
+        for f in TET_FACES {
+            buf.push(oriented(t[f[0]].0, t[f[1]].0, t[f[2]].0));
+        }
+    }
+    buf.sort_unstable();
+    let mut same = 0;
+    for w in buf.windows(2) {
+        if w[0] == w[1] {
+            same += 1;
+        }
+    }
+    let mut out = Vec::new();
+    for &f in buf.iter() {
+        if buf.binary_search(&flip(f)).is_err() {
+            out.push(f);
+        }
+    }
+    (out, same)
+}
+
+impl Mt {
+    /// Checks every invariant (see the [module docs](self)); tests call it after every
+    /// operation. Exhaustive: linear-logarithmic in the pool size, plus two extractions.
+    pub fn validate(&self) -> MtValidationReport {
+        let mut r = MtValidationReport::default();
+        let nf = self.nb_fragments();
+        let na = self.nb_arcs();
+        // Structure: what `assemble` checked, re-checked (the store is private, but this is
+        // the exhaustive check).
+        let parts_ok = self.arc_start.len() == na + 1
+            && self.arc_destroyer.len() == na
+            && self.arc_start.first() == Some(&0)
+            && self.arc_start.last().map(|&s| s as usize) == Some(self.nb_tets())
+            && self.arc_start.windows(2).all(|w| w[0] <= w[1])
+            && self.error.len() == nf
+            && self.level.len() == nf
+            && self.bbox.len() == nf
+            && self.point_data.mismatched(self.nb_vertices()).is_none()
+            && self.cell_data.mismatched(self.nb_tets()).is_none();
+        if !parts_ok {
+            r.add(MtViolationKind::Structure, || {
+                "column lengths or arc starts inconsistent".into()
+            });
+            return r;
+        }
+        for a in 0..na {
+            let (c, d) = (self.arc_creator[a], self.arc_destroyer[a]);
+            if c.idx() >= nf || d.idx() >= nf || c == d {
+                r.add(MtViolationKind::Structure, || format!("arc {a}: {c} → {d}"));
+            }
+            if self.arc_tets(a).is_empty() {
+                r.add(MtViolationKind::EmptyArc, || format!("arc {a}: {c} → {d}"));
+            }
+        }
+        for (t, tet) in self.tets.iter().enumerate() {
+            let in_range = tet
+                .iter()
+                .enumerate()
+                .all(|(k, v)| v.idx() < self.nb_vertices() || (*v == GHOST && k == 3));
+            let distinct = (0..4).all(|i| (i + 1..4).all(|j| tet[i] != tet[j]));
+            if !in_range || !distinct {
+                r.add(MtViolationKind::Structure, || format!("tet {t} {tet:?}"));
+            }
+        }
+        if !r.is_valid() {
+            return r;
+        }
+        // Kinds and the DAG.
+        if self.roots.is_empty() || self.drains.is_empty() || self.roots.len() != self.drains.len()
+        {
+            r.add(MtViolationKind::FragmentKind, || {
+                format!(
+                    "{} roots and {} drains",
+                    self.roots.len(),
+                    self.drains.len()
+                )
+            });
+        }
+        for f in 0..nf {
+            let fid = FragmentId::from_usize(f);
+            let (floor, ceiling) = (self.in_arcs(fid).len(), self.out_arcs(fid).len());
+            let bad = match self.kind[f] {
+                FragmentKind::Root => floor > 0 || ceiling == 0,
+                FragmentKind::Drain => ceiling > 0 || floor == 0,
+                FragmentKind::Collapse => floor == 0 || ceiling == 0,
+            };
+            if bad {
+                r.add(MtViolationKind::FragmentKind, || {
+                    format!(
+                        "{:?} fragment {f} with {floor} in-arcs, {ceiling} out-arcs",
+                        self.kind[f]
+                    )
+                });
+            }
+        }
+        match super::levels(nf, &self.arc_creator, &self.in_arcs) {
+            None => r.add(MtViolationKind::Cycle, || "the DAG has a cycle".into()),
+            Some(levels) => {
+                for f in (0..nf).filter(|&f| levels[f] != self.level[f]) {
+                    r.add(MtViolationKind::LevelMismatch, || {
+                        format!("fragment {f}: stored {} vs {}", self.level[f], levels[f])
+                    });
+                }
+            }
+        }
+        // Errors.
+        for f in 0..nf {
+            let e = self.error[f];
+            let ok = match self.kind[f] {
+                FragmentKind::Root => e == 0.0,
+                FragmentKind::Drain => e == f64::INFINITY,
+                FragmentKind::Collapse => e.is_finite() && e >= 0.0,
+            };
+            if !ok {
+                r.add(MtViolationKind::ErrorValue, || {
+                    format!("{:?} fragment {f} has error {e}", self.kind[f])
+                });
+            }
+        }
+        for a in 0..na {
+            let (c, d) = (self.arc_creator[a], self.arc_destroyer[a]);
+            if self.error[c.idx()] > self.error[d.idx()] {
+                r.add(MtViolationKind::ErrorNotMonotone, || {
+                    format!(
+                        "fragment {d} (error {}) depends on {c} (error {})",
+                        self.error[d.idx()],
+                        self.error[c.idx()]
+                    )
+                });
+            }
+        }
+        // Geometry of every tet of every level.
+        for (t, tet) in self.tets.iter().enumerate() {
+            if tet[3] == GHOST {
+                continue;
+            }
+            let [a, b, c, d] = tet.map(|v| self.positions[v.idx()]);
+            if orient3d(a, b, c, d) != Sign::Positive {
+                r.add(MtViolationKind::TetOrientation, || {
+                    format!(
+                        "tet {t} {tet:?} (creator {})",
+                        self.tet_creator(TetId::from_usize(t))
+                    )
+                });
+            }
+        }
+        // Floor and ceiling of every fragment.
+        let mut buf = Vec::new();
+        for f in 0..nf {
+            let fid = FragmentId::from_usize(f);
+            let (floor_b, floor_same) =
+                boundary_of(self.destroyed_tets(fid).map(|t| self.tet(t)), &mut buf);
+            let (ceil_b, ceil_same) =
+                boundary_of(self.created_tets(fid).map(|t| self.tet(t)), &mut buf);
+            if floor_same + ceil_same > 0 {
+                r.add(MtViolationKind::FragmentNotConforming, || {
+                    format!(
+                        "fragment {f}: {floor_same} floor and {ceil_same} ceiling faces doubled"
+                    )
+                });
+            }
+            if floor_b != ceil_b {
+                r.add(MtViolationKind::FragmentBoundary, || {
+                    format!(
+                        "{:?} fragment {f}: floor boundary has {} triangles, ceiling {}",
+                        self.kind[f],
+                        floor_b.len(),
+                        ceil_b.len()
+                    )
+                });
+            }
+            let mut b = Aabb::EMPTY;
+            for t in self.destroyed_tets(fid).chain(self.created_tets(fid)) {
+                for v in self.tet(t).iter().filter(|v| **v != GHOST) {
+                    b.grow(self.positions[v.idx()]);
+                }
+            }
+            if super::BoxF32::enclosing(&b) != self.bbox[f] {
+                r.add(MtViolationKind::BboxMismatch, || format!("fragment {f}"));
+            }
+        }
+        // The extreme frontiers.
+        for (name, options) in [
+            ("finest", ExtractOptions::FINEST),
+            ("coarsest", ExtractOptions::COARSEST),
+        ] {
+            match self.extract(&options) {
+                Ok(e) => {
+                    let v = e.mesh.validate();
+                    if !v.is_valid() {
+                        r.add(MtViolationKind::Frontier, || format!("{name} mesh: {v}"));
+                    }
+                }
+                Err(e) => r.add(MtViolationKind::Frontier, || format!("{name}: {e}")),
+            }
+        }
+        r
+    }
+}

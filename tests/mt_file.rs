@@ -1,0 +1,161 @@
+//! The `.mt` file: save → load gives the same MT; damaged files are refused with a clear
+//! error; and `validate` catches what a well-checksummed but wrong file would hide.
+
+mod mt_common;
+
+use mt_common::{MESHES, built};
+use mtcut::mt::{MT_FILE_VERSION, MT_MAGIC, Mt, MtFileErrorKind, MtViolationKind};
+
+const HEADER: usize = 32;
+
+fn temp_dir(test: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("mtcut-{test}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn save_then_load_is_identical() {
+    let dir = temp_dir("roundtrip");
+    for name in MESHES {
+        let (_, mt, _) = built(name);
+        let path = dir.join(format!("{name}.mt"));
+        mt.save(&path).unwrap();
+        let back = Mt::load(&path).unwrap();
+        assert!(back == *mt, "{name}: loaded MT differs");
+        assert_eq!(back.canonical_form(), mt.canonical_form());
+        assert!(back.validate().is_valid());
+        let size = std::fs::metadata(&path).unwrap().len();
+        eprintln!(
+            "{name}: {size} bytes on disk, {} in memory",
+            mt.heap_bytes()
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Rewrites the header checksum after a payload edit (a file that was written wrong, not
+/// damaged on the way).
+fn reseal(bytes: &mut [u8]) {
+    let mut crc = flate2::Crc::new();
+    crc.update(&bytes[HEADER..]);
+    bytes[24..28].copy_from_slice(&crc.sum().to_le_bytes());
+}
+
+#[test]
+fn damaged_files_are_refused_with_the_reason() {
+    let (_, mt, _) = built("pinion");
+    let good = mt.to_bytes();
+    assert_eq!(&good[..8], &MT_MAGIC);
+
+    let mut magic = good.clone();
+    magic[0] = b'X';
+    let e = Mt::from_bytes(&magic).unwrap_err();
+    assert!(matches!(e, MtFileErrorKind::WrongMagic { .. }), "{e}");
+    assert!(
+        Mt::from_bytes(b"solid ascii stl file")
+            .unwrap_err()
+            .to_string()
+            .contains("magic")
+    );
+
+    let mut version = good.clone();
+    version[8..12].copy_from_slice(&(MT_FILE_VERSION + 1).to_le_bytes());
+    let e = Mt::from_bytes(&version).unwrap_err();
+    assert!(
+        matches!(e, MtFileErrorKind::UnsupportedVersion { found, .. } if found == MT_FILE_VERSION + 1),
+        "{e}"
+    );
+
+    for cut in [0, 7, HEADER - 1, HEADER, good.len() / 2, good.len() - 1] {
+        let e = Mt::from_bytes(&good[..cut]).unwrap_err();
+        assert!(
+            matches!(e, MtFileErrorKind::Truncated { .. }),
+            "cut at {cut}: {e}"
+        );
+        assert!(e.to_string().contains("truncated"), "{e}");
+    }
+
+    let mut longer = good.clone();
+    longer.push(0);
+    assert!(matches!(
+        Mt::from_bytes(&longer).unwrap_err(),
+        MtFileErrorKind::TrailingBytes { extra: 1 }
+    ));
+
+    for at in [HEADER, HEADER + 1000, good.len() / 2, good.len() - 3] {
+        let mut flipped = good.clone();
+        flipped[at] ^= 0x10;
+        let e = Mt::from_bytes(&flipped).unwrap_err();
+        assert!(
+            matches!(e, MtFileErrorKind::ChecksumMismatch { .. }),
+            "byte {at}: {e}"
+        );
+        assert!(e.to_string().contains("checksum"), "{e}");
+    }
+
+    let dir = temp_dir("damaged");
+    let path = dir.join("missing.mt");
+    let e = Mt::load(&path).unwrap_err();
+    assert!(e.to_string().contains("missing.mt"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Offset in the payload of the tet array: after the info block and the counts.
+fn tets_offset(bytes: &[u8]) -> usize {
+    let name_len = u32::from_le_bytes(bytes[HEADER..HEADER + 4].try_into().unwrap()) as usize;
+    let info = 4 + name_len + 8 + 1 + 8 + 8;
+    let counts_at = HEADER + info;
+    let nv = u64::from_le_bytes(bytes[counts_at..counts_at + 8].try_into().unwrap()) as usize;
+    counts_at + 32 + nv * 24
+}
+
+#[test]
+fn well_sealed_but_inconsistent_files_are_refused_or_caught() {
+    let (_, mt, _) = built("pinion");
+    let good = mt.to_bytes();
+    let at = tets_offset(&good);
+
+    // A vertex index beyond the pool: refused on loading, with what and where.
+    let mut out_of_range = good.clone();
+    out_of_range[at..at + 4].copy_from_slice(&u32::MAX.wrapping_sub(7).to_le_bytes());
+    reseal(&mut out_of_range);
+    let e = Mt::from_bytes(&out_of_range).unwrap_err();
+    assert!(matches!(e, MtFileErrorKind::Corrupt(_)), "{e}");
+    assert!(e.to_string().contains("tet 0"), "{e}");
+
+    // Two corners of a tet swapped: structurally fine, geometrically inverted, and the
+    // fragments around it no longer fit: `validate` says so.
+    let mut swapped = good.clone();
+    let (a, b) = (at + 4, at + 8);
+    let tmp: [u8; 4] = swapped[a..a + 4].try_into().unwrap();
+    swapped.copy_within(b..b + 4, a);
+    swapped[b..b + 4].copy_from_slice(&tmp);
+    reseal(&mut swapped);
+    let bad = Mt::from_bytes(&swapped).unwrap();
+    let r = bad.validate();
+    assert!(r.count(MtViolationKind::TetOrientation) >= 1, "{r}");
+    assert!(r.count(MtViolationKind::FragmentBoundary) >= 1, "{r}");
+    assert!(!r.is_valid());
+    eprintln!("{r}");
+}
+
+#[test]
+fn attributes_survive_the_file() {
+    let mut input = mt_common::mesh("fandisk");
+    let n = input.nb_vertices();
+    let velocity: Vec<f64> = (0..3 * n).map(|i| i as f64 * 0.5).collect();
+    input
+        .point_data
+        .insert(mtcut::mesh::Attribute::new("velocity", 3, velocity).unwrap());
+    let region: Vec<f64> = (0..input.nb_tets()).map(|t| (t % 7) as f64).collect();
+    input
+        .cell_data
+        .insert(mtcut::mesh::Attribute::new("region", 1, region).unwrap());
+    let options = mtcut::mt::BuildOptions::DEFAULT.with_target_tets(Some(input.nb_tets() / 3));
+    let (mt, _) = Mt::build(&input, &options).unwrap();
+    let back = Mt::from_bytes(&mt.to_bytes()).unwrap();
+    assert!(back == mt);
+    assert_eq!(back.point_data().get("velocity").unwrap().components, 3);
+    assert!(back.validate().is_valid());
+}
