@@ -26,6 +26,7 @@
 //! `geom` (predicates, planes) ← `mesh` (TetMesh, tables, adjacency, validation) ← `io`.
 //! See ARCHITECTURE.md.
 
+pub mod cut;
 pub mod geom;
 pub mod io;
 pub mod mesh;

@@ -213,6 +213,15 @@ impl TetMesh {
         &mut self.positions
     }
 
+    /// Makes room for `tets` more tets and `vertices` more vertices (with their attribute
+    /// rows), so that appending them does not reallocate.
+    pub fn reserve(&mut self, tets: usize, vertices: usize) {
+        self.tets.reserve(tets);
+        self.positions.reserve(vertices);
+        self.cell_data.reserve(tets);
+        self.point_data.reserve(vertices);
+    }
+
     /// Appends a vertex (attribute rows are the caller's: see [`Attributes::push_lerp`]).
     pub(crate) fn push_vertex(&mut self, p: DVec3) -> VertexId {
         self.positions.push(p);

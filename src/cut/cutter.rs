@@ -1,0 +1,440 @@
+//! The cut of a plain [`TetMesh`]: the paper's steps 1 and 2 (§3) on one mesh, with the
+//! acceleration structure kept between cuts.
+
+use super::bielser::Bielser17Nodes;
+use super::bvh::TetBvh;
+use super::classify::{CutScratch, CutSession, VertexOrigin, origin_position};
+use super::options::{CutError, CutOptions, Scheme};
+use super::report::{CutResult, CutStats, CutTimes, SplitRecord};
+use super::split::{Children, split_tet};
+use super::tables::{NEG, ON, POS, Side};
+use super::unglue::{StarEntry, plan_copies};
+use crate::geom::{CutPolygon, DVec3};
+use crate::mesh::tables::TET_EDGES;
+use crate::mesh::{Attribute, FaceAdjacency, Tet, TetId, TetMesh, VertexId};
+use std::time::{Duration, Instant};
+
+/// The per-tet column marking tets created by cuts: the 1-based number of the cut that
+/// created the tet (within the meshes this library cut), 0 for tets not created by a cut.
+pub const CUT_COLUMN: &str = "mtcut:cut";
+
+/// The largest number of vertices or tets a mesh may reach (ids are `u32`, `u32::MAX`
+/// meaning "none").
+const MAX_ELEMENTS: usize = u32::MAX as usize - 1;
+
+/// The scale of each vertex: the length of its longest incident edge (0 for an unused
+/// vertex). Snapping distances are relative to it.
+pub fn vertex_scales(mesh: &TetMesh) -> Vec<f64> {
+    let pos = mesh.positions();
+    let mut s = vec![0.0f64; pos.len()];
+    for t in mesh.tets() {
+        for [a, b] in TET_EDGES {
+            let (u, v) = (t[a].idx(), t[b].idx());
+            let l = pos[u].distance(pos[v]);
+            s[u] = s[u].max(l);
+            s[v] = s[v].max(l);
+        }
+    }
+    s
+}
+
+/// A mesh ready to be cut many times: the mesh, its vertex scales and its tet hierarchy,
+/// all kept up to date by each cut, so a cut costs time in proportion to the tets it
+/// touches, not to the mesh.
+#[derive(Clone)]
+pub struct Cutter {
+    mesh: TetMesh,
+    scales: Vec<f64>,
+    bvh: TetBvh,
+    scratch: CutScratch,
+    options: CutOptions,
+    cuts_applied: u32,
+    build_time: Duration,
+}
+
+impl Cutter {
+    /// Prepares `mesh` (which should be valid: see [`TetMesh::validate`]) for cutting with
+    /// `options`. Adds the [`CUT_COLUMN`] cell column if missing.
+    pub fn new(mesh: TetMesh, options: CutOptions) -> Result<Cutter, CutError> {
+        options.check()?;
+        Ok(Cutter::prepare(mesh, options))
+    }
+
+    /// [`new`](Self::new) with options already checked.
+    fn prepare(mut mesh: TetMesh, options: CutOptions) -> Cutter {
+        let start = Instant::now();
+        let scales = vertex_scales(&mesh);
+        let bvh = TetBvh::build(mesh.positions(), &scales, mesh.tets());
+        let build_time = start.elapsed();
+        let n = mesh.nb_tets();
+        let cuts_applied = match mesh.cell_data.get(CUT_COLUMN) {
+            Some(c) if c.components == 1 && c.len() == n => {
+                c.values.iter().fold(0.0f64, |m, &x| m.max(x)) as u32
+            }
+            _ => {
+                mesh.cell_data.insert(Attribute {
+                    name: CUT_COLUMN.to_string(),
+                    components: 1,
+                    values: vec![0.0; n],
+                });
+                0
+            }
+        };
+        Cutter {
+            mesh,
+            scales,
+            bvh,
+            scratch: CutScratch::new(),
+            options,
+            cuts_applied,
+            build_time,
+        }
+    }
+
+    pub fn mesh(&self) -> &TetMesh {
+        &self.mesh
+    }
+
+    pub fn into_mesh(self) -> TetMesh {
+        self.mesh
+    }
+
+    pub fn options(&self) -> &CutOptions {
+        &self.options
+    }
+
+    /// Changes the options of the next cuts.
+    pub fn set_options(&mut self, options: CutOptions) -> Result<(), CutError> {
+        options.check()?;
+        self.options = options;
+        Ok(())
+    }
+
+    /// Makes room for `tets` more tets and `vertices` more vertices, so that the next cuts
+    /// adding up to that many do not reallocate the mesh's arrays (a simulation calls it
+    /// once, sized for the cuts it expects; without it arrays grow by doubling).
+    pub fn reserve(&mut self, tets: usize, vertices: usize) {
+        self.mesh.reserve(tets, vertices);
+        self.scales.reserve(vertices);
+        self.bvh.reserve_tets(self.mesh.nb_tets() + tets);
+    }
+
+    /// Time spent building the vertex scales and the hierarchy.
+    pub fn build_time(&self) -> Duration {
+        self.build_time
+    }
+
+    /// The scale of each vertex (see [`vertex_scales`]); vertices added by cuts take the
+    /// largest scale of the vertices they are made from.
+    pub fn vertex_scales(&self) -> &[f64] {
+        &self.scales
+    }
+
+    /// Number of cuts applied so far (the value [`CUT_COLUMN`] gives the tets of the next
+    /// cut, minus one).
+    pub fn cuts_applied(&self) -> u32 {
+        self.cuts_applied
+    }
+
+    /// Cuts the mesh with `polygon`: every tet C crosses is replaced by tets C does not
+    /// cross (paper §3 steps 1–2), the cut points are duplicated for the two sides, and the
+    /// vertices the cut passes through are duplicated where the sides separate.
+    pub fn cut(&mut self, polygon: &CutPolygon) -> Result<CutResult, CutError> {
+        let opts = self.options;
+        let start = Instant::now();
+        let mut times = CutTimes::default();
+        let n_vertices = self.mesh.nb_vertices();
+        let n_tets = self.mesh.nb_tets();
+
+        // Step 1: candidates, in the hierarchy's depth-first order (deterministic: the
+        // hierarchy only depends on the mesh and the cuts applied to it).
+        let found = self.bvh.candidates(
+            self.mesh.positions(),
+            &self.scales,
+            self.mesh.tets(),
+            polygon,
+            opts.snap,
+            n_tets / 32 >= opts.parallel_threshold,
+        );
+        let cand = &found.tets;
+        let states = &found.states;
+        let tets: Vec<Tet> = cand.iter().map(|t| self.mesh.tet(*t)).collect();
+        times.query = start.elapsed().as_secs_f64();
+
+        // Step 2a: classify edges and faces once, place and allocate the new vertices.
+        let t = Instant::now();
+        let par = |n: usize| n >= opts.parallel_threshold;
+        let mut session = CutSession::new(
+            polygon,
+            opts.snap,
+            opts.face_point_margin,
+            &mut self.scratch,
+            n_vertices,
+        );
+        let classes = session.classify(self.mesh.positions(), &tets, states, par(tets.len()));
+        let first = VertexId::from_usize(n_vertices);
+        let (bielser, mut origins) = match opts.scheme {
+            Scheme::Lut => (None, session.allocate(first)),
+            Scheme::Bielser17 => {
+                let (nodes, o) = Bielser17Nodes::allocate(&session, &tets, &classes, first);
+                (Some(nodes), o)
+            }
+        };
+        let split_count: usize = classes.iter().filter(|c| c.is_split()).count();
+        let max_children = if bielser.is_some() { 17 } else { 13 };
+        if n_vertices + origins.len() + 4 * (tets.len() + split_count * max_children) > MAX_ELEMENTS
+            || n_tets + split_count * max_children > MAX_ELEMENTS
+        {
+            return Err(CutError::TooLarge {
+                max: MAX_ELEMENTS as u32,
+            });
+        }
+        let (edges_crossed, edges_cut) = session.edge_counts();
+        add_vertices(&mut self.mesh, &mut self.scales, &origins);
+        times.classify = t.elapsed().as_secs_f64();
+
+        // Step 2b: replace the cut tets.
+        let t = Instant::now();
+        let split_one = |k: usize, out: &mut Children| -> bool {
+            match &bielser {
+                None => split_tet(&session, &tets[k], &classes[k], out),
+                Some(nodes) => nodes.split(&tets[k], &classes[k], out),
+            }
+        };
+        let split_at: Vec<usize> = (0..tets.len()).filter(|&k| classes[k].is_split()).collect();
+        let computed: Vec<Children> = if par(split_at.len()) {
+            use rayon::prelude::*;
+            split_at
+                .par_iter()
+                .map(|&k| {
+                    let mut c = Children::new();
+                    split_one(k, &mut c);
+                    c
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        self.cuts_applied += 1;
+        let mark = self.cuts_applied as f64;
+        let mut by_case = [0usize; 10];
+        let mut created = 0usize;
+        let mut star: Vec<StarEntry> = Vec::new();
+        let mut appended_parents: Vec<u32> = Vec::new();
+        let mut records: Vec<SplitRecord> = Vec::with_capacity(split_at.len());
+        let first_appended = self.mesh.nb_tets();
+        self.bvh
+            .reserve_tets(n_tets + split_at.len() * max_children);
+        let mut buffer = Children::new();
+        for (i, &k) in split_at.iter().enumerate() {
+            let ch = match computed.get(i) {
+                Some(c) => c,
+                None => {
+                    split_one(k, &mut buffer);
+                    &buffer
+                }
+            };
+            let parent = cand[k];
+            by_case[ch.case as usize] += 1;
+            created += ch.len;
+            let all = self.mesh.tets_mut();
+            all[parent.idx()] = ch.tets[0];
+            let first_extra = all.len();
+            all.extend_from_slice(&ch.tets[1..ch.len]);
+            records.push(SplitRecord {
+                parent,
+                first_appended: TetId::from_usize(first_extra),
+                children: ch.len as u8,
+                case: ch.case,
+            });
+            appended_parents.extend(std::iter::repeat_n(parent.0, ch.len - 1));
+            self.bvh.add_children(
+                parent,
+                (first_extra..first_extra + ch.len - 1).map(TetId::from_usize),
+            );
+            for c in 0..ch.len {
+                let on = ch.on_cut[c];
+                if on != 0 {
+                    let slot = if c == 0 {
+                        parent
+                    } else {
+                        TetId::from_usize(first_extra + c - 1)
+                    };
+                    for j in 0..4 {
+                        if on & (1 << j) != 0 {
+                            star.push(StarEntry {
+                                vertex: ch.tets[c][j],
+                                tet: slot,
+                                side: ch.sides[c],
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        drop(session);
+        if let Some(col) = self.mesh.cell_data.get_mut(CUT_COLUMN) {
+            for &k in &split_at {
+                col.values[cand[k].idx()] = mark;
+            }
+        }
+        self.mesh.cell_data.push_copies(&appended_parents);
+        debug_assert_eq!(self.mesh.nb_tets(), first_appended + appended_parents.len());
+        times.split = t.elapsed().as_secs_f64();
+
+        // Vertices on the cut: one copy per group of tets the cut surface separates.
+        let t = Instant::now();
+        let mut vertex_copies = 0;
+        let mut snapped: Vec<VertexId> = Vec::new();
+        for (k, c) in classes.iter().enumerate() {
+            if c.touches_cut() {
+                for (j, &s) in c.states.iter().enumerate() {
+                    if s == ON {
+                        snapped.push(tets[k][j]);
+                    }
+                }
+                if !c.is_split() && opts.scheme == Scheme::Lut {
+                    let side = self.unsplit_side(polygon, &tets[k], &c.states);
+                    for (j, &s) in c.states.iter().enumerate() {
+                        if s == ON {
+                            star.push(StarEntry {
+                                vertex: tets[k][j],
+                                tet: cand[k],
+                                side,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        snapped.sort_unstable();
+        snapped.dedup();
+        if opts.scheme == Scheme::Lut {
+            let copies = plan_copies(self.mesh.tets(), &snapped, &star);
+            for (v, members) in copies.groups {
+                let copy = self.mesh.push_vertex(self.mesh.position(v));
+                self.scales.push(self.scales[v.idx()]);
+                self.mesh.point_data.push_copy(v.idx());
+                origins.push(VertexOrigin::Copy { of: v });
+                vertex_copies += 1;
+                let tets = self.mesh.tets_mut();
+                for t in members {
+                    for x in tets[t.idx()].iter_mut() {
+                        if *x == v {
+                            *x = copy;
+                        }
+                    }
+                }
+            }
+        }
+        times.unglue = t.elapsed().as_secs_f64();
+        times.cut = start.elapsed().as_secs_f64();
+
+        let t = Instant::now();
+        let components = opts
+            .count_components
+            .then(|| FaceAdjacency::new(&self.mesh).components().0);
+        times.components = t.elapsed().as_secs_f64();
+
+        let cut_points = origins
+            .iter()
+            .filter(|o| matches!(o, VertexOrigin::Edge { .. }))
+            .count();
+        let face_points = origins
+            .iter()
+            .filter(|o| matches!(o, VertexOrigin::Face { .. }))
+            .count();
+        let stats = CutStats {
+            scheme: opts.scheme,
+            tets_tested: found.tested,
+            tets_candidate: cand.len(),
+            tets_cut: split_at.len(),
+            tets_cut_by_case: by_case,
+            tets_created: created,
+            vertices_added: origins.len(),
+            cut_points,
+            face_points,
+            vertex_copies,
+            vertices_snapped: snapped.len(),
+            edges_crossed,
+            edges_cut,
+            tets_after: self.mesh.nb_tets(),
+            vertices_after: self.mesh.nb_vertices(),
+            components,
+            time: times,
+        };
+        Ok(CutResult {
+            stats,
+            first_new_vertex: first,
+            origins,
+            splits: records,
+        })
+    }
+
+    /// The side of a tet the tables leave whole but that touches the cut at a vertex: the
+    /// side of its other vertices; a tet with all four vertices snapped (a sliver lying in
+    /// the cut) goes to the side of its centroid.
+    fn unsplit_side(&self, polygon: &CutPolygon, tet: &Tet, states: &[u8; 4]) -> Side {
+        if states.contains(&POS) {
+            debug_assert!(
+                !states.contains(&NEG),
+                "an unsplit tet straddles at a snapped vertex"
+            );
+            return Side::Positive;
+        }
+        if states.contains(&NEG) {
+            return Side::Negative;
+        }
+        let c: DVec3 = tet.iter().map(|v| self.mesh.position(*v)).sum::<DVec3>() * 0.25;
+        if polygon.signed_distance(c) < 0.0 {
+            Side::Negative
+        } else {
+            Side::Positive
+        }
+    }
+}
+
+/// Appends the vertices of `origins` to `mesh` (positions, interpolated point data) and
+/// their scales to `scales`.
+fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrigin]) {
+    for o in origins {
+        let p = origin_position(mesh.positions(), o);
+        let scale = match *o {
+            VertexOrigin::Edge { a, b, t, .. } => {
+                mesh.point_data.push_lerp(a.idx(), b.idx(), t);
+                scales[a.idx()].max(scales[b.idx()])
+            }
+            VertexOrigin::Face { v, w } => {
+                mesh.point_data.push_combination(&[
+                    (v[0].idx(), w[0]),
+                    (v[1].idx(), w[1]),
+                    (v[2].idx(), w[2]),
+                ]);
+                v.iter().map(|x| scales[x.idx()]).fold(0.0, f64::max)
+            }
+            VertexOrigin::Copy { of } => {
+                mesh.point_data.push_copy(of.idx());
+                scales[of.idx()]
+            }
+        };
+        mesh.push_vertex(p);
+        scales.push(scale);
+    }
+}
+
+/// Cuts `mesh` with `polygon` once (building the acceleration structure, timed in
+/// `stats.time.build`). To apply many cuts, keep a [`Cutter`].
+pub fn cut_mesh(
+    mesh: &mut TetMesh,
+    polygon: &CutPolygon,
+    options: &CutOptions,
+) -> Result<CutResult, CutError> {
+    options.check()?;
+    let mut cutter = Cutter::prepare(std::mem::take(mesh), *options);
+    let result = cutter.cut(polygon);
+    let build = cutter.build_time().as_secs_f64();
+    *mesh = cutter.into_mesh();
+    let mut result = result?;
+    result.stats.time.build = build;
+    Ok(result)
+}

@@ -1,0 +1,166 @@
+//! Separating the mesh at the vertices snapped onto the cut.
+//!
+//! Cut points are duplicated by the tables (one copy per side) and face points never are
+//! (they are the crack tip). A vertex snapped onto the cut (`ON`) is an original vertex
+//! that the cut surface passes through; after splitting, every tet around it lies on one
+//! side — a tet the plane crosses at an `ON` vertex always has that vertex inside its crack
+//! polygon, so the tables split it and none of its children straddles there. The vertex
+//! then needs one copy per group of tets around it that are connected through faces not on
+//! the cut surface; a face between a positive and a negative tet is on the cut surface
+//! (its vertices can only be on the cut).
+//!
+//! For an interior vertex the groups are exactly the two sides; a boundary vertex can have
+//! two groups on one side (a saddle of the boundary that the plane meets twice around the
+//! vertex), which this rule also handles. The first group (positive side first, then by
+//! lowest tet) keeps the vertex; the others get copies, allocated in vertex order.
+
+use super::tables::Side;
+use crate::mesh::{Tet, TetId, VertexId};
+
+/// A tet around an `ON` vertex: its slot and side.
+#[derive(Clone, Copy, Debug)]
+pub struct StarEntry {
+    pub vertex: VertexId,
+    pub tet: TetId,
+    pub side: Side,
+}
+
+/// The copies to make.
+pub struct Copies {
+    /// (vertex, entries of the tets that take the copy), in allocation order.
+    pub groups: Vec<(VertexId, Vec<TetId>)>,
+}
+
+fn find(parent: &mut [u32], mut i: u32) -> u32 {
+    while parent[i as usize] != i {
+        parent[i as usize] = parent[parent[i as usize] as usize];
+        i = parent[i as usize];
+    }
+    i
+}
+
+/// Groups the tets around each `ON` vertex and decides the copies (see the module docs).
+/// `entries` lists every tet around every vertex of `on_cut` (sorted, distinct), in a
+/// deterministic order; the tet's vertex array is read from `tets`.
+pub fn plan_copies(tets: &[Tet], on_cut: &[VertexId], entries: &[StarEntry]) -> Copies {
+    // Bucket the entries by vertex (a counting sort: stable, linear).
+    let slot = |v: VertexId| on_cut.binary_search(&v).unwrap_or(0);
+    let mut start = vec![0usize; on_cut.len() + 1];
+    for e in entries {
+        start[slot(e.vertex) + 1] += 1;
+    }
+    for i in 0..on_cut.len() {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut sorted = vec![
+        entries.first().copied().unwrap_or(StarEntry {
+            vertex: VertexId::INVALID,
+            tet: TetId::INVALID,
+            side: Side::Straddle
+        });
+        entries.len()
+    ];
+    for e in entries {
+        let s = slot(e.vertex);
+        sorted[fill[s]] = *e;
+        fill[s] += 1;
+    }
+    let mut groups = Vec::new();
+    let mut faces = FaceTable::default();
+    let mut parent: Vec<u32> = Vec::new();
+    for w in start.windows(2) {
+        let run = &sorted[w[0]..w[1]];
+        if run.is_empty() {
+            continue;
+        }
+        let has_pos = run.iter().any(|e| e.side == Side::Positive);
+        let has_neg = run.iter().any(|e| e.side == Side::Negative);
+        if !(has_pos && has_neg) {
+            continue;
+        }
+        let v = run[0].vertex;
+        parent.clear();
+        parent.extend(0..run.len() as u32);
+        faces.reset(run.len() * 3);
+        for (k, e) in run.iter().enumerate() {
+            let t = &tets[e.tet.idx()];
+            let mut others = [VertexId::INVALID; 3];
+            let mut n = 0;
+            for &x in t {
+                if x != v && n < 3 {
+                    others[n] = x;
+                    n += 1;
+                }
+            }
+            debug_assert_eq!(n, 3, "tet {} does not hold vertex {v}", e.tet);
+            for (a, b) in [(0, 1), (0, 2), (1, 2)] {
+                let (x, y) = (others[a].min(others[b]), others[a].max(others[b]));
+                let key = (x.0 as u64) << 32 | y.0 as u64;
+                // The other tet through face (v, x, y), if seen: same side joins groups.
+                if let Some(j) = faces.insert(key, k as u32) {
+                    if run[j as usize].side == e.side {
+                        let (ri, rj) = (find(&mut parent, j), find(&mut parent, k as u32));
+                        if ri != rj {
+                            parent[ri.max(rj) as usize] = ri.min(rj);
+                        }
+                    }
+                }
+            }
+        }
+        // Groups in order: positive side first, then by first entry (unions keep the
+        // smaller index as root, so a root is its group's first entry).
+        for k in 0..run.len() as u32 {
+            let r = find(&mut parent, k);
+            parent[k as usize] = r;
+        }
+        let mut roots: Vec<(bool, u32)> = (0..run.len() as u32)
+            .filter(|&k| parent[k as usize] == k)
+            .map(|k| (run[k as usize].side != Side::Positive, k))
+            .collect();
+        roots.sort_unstable();
+        for &(_, root) in roots.iter().skip(1) {
+            let members: Vec<TetId> = (0..run.len())
+                .filter(|&k| parent[k] == root)
+                .map(|k| run[k].tet)
+                .collect();
+            groups.push((v, members));
+        }
+    }
+    Copies { groups }
+}
+
+/// A small open-addressing table from a face key to the first tet seen through it, reused
+/// for every vertex (a star has a few dozen tets: sorting them would cost more).
+#[derive(Default)]
+struct FaceTable {
+    keys: Vec<u64>,
+    values: Vec<u32>,
+    mask: usize,
+}
+
+impl FaceTable {
+    fn reset(&mut self, n: usize) {
+        let size = (2 * n).next_power_of_two().max(16);
+        self.keys.clear();
+        self.keys.resize(size, u64::MAX);
+        self.values.resize(size, 0);
+        self.mask = size - 1;
+    }
+
+    /// Inserts `key -> value`, or returns the value already there.
+    fn insert(&mut self, key: u64, value: u32) -> Option<u32> {
+        let mut i = (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 40) as usize & self.mask;
+        loop {
+            if self.keys[i] == u64::MAX {
+                self.keys[i] = key;
+                self.values[i] = value;
+                return None;
+            }
+            if self.keys[i] == key {
+                return Some(self.values[i]);
+            }
+            i = (i + 1) & self.mask;
+        }
+    }
+}
