@@ -279,6 +279,12 @@ fn children_carry_the_side_they_lie_on() {
                 SIDE_NEGATIVE => assert!(neg && !pos),
                 _ => assert!(pos && neg),
             }
+            // Cut points, face points and snapped vertices are coplanar in fact: a child
+            // needs a vertex off the cut to have volume.
+            assert!(
+                ch.iter().any(|&p| p < 4 && states[p as usize] != ON),
+                "{ch:?} lies in the cut plane in {states:?}"
+            );
             // A child touching a vertex on the cut never straddles: the unglue step relies
             // on it.
             if ch.iter().any(|&p| p < 4 && states[p as usize] == ON) {

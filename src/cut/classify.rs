@@ -146,7 +146,7 @@ impl TetClass {
 pub fn vertex_state(polygon: &CutPolygon, snap: Tolerance, p: DVec3, scale: f64) -> u8 {
     let d = polygon.signed_distance(p);
     let r = snap.distance(scale);
-    if d.abs() <= r && polygon.inside_margin(p) >= -r {
+    if d.abs() <= r && polygon.projection_distance(p) <= r {
         return ON;
     }
     match polygon.side_filtered(p, d) {
@@ -406,6 +406,7 @@ impl<'a> CutSession<'a> {
     pub fn classify(
         &mut self,
         positions: &[DVec3],
+        scales: &[f64],
         tets: &[Tet],
         states: &[[u8; 4]],
         parallel: bool,
@@ -447,7 +448,7 @@ impl<'a> CutSession<'a> {
                 }
             }
         }
-        self.compute_new_faces(positions, parallel);
+        self.compute_new_faces(positions, scales, parallel);
         classes
     }
 
@@ -477,8 +478,14 @@ impl<'a> CutSession<'a> {
         }
     }
 
+    /// Classifies the edges recorded since the last call: crossing parameter, and cut or
+    /// not (exactly). A cut point is kept `snap` away from its edge's ends: snapping
+    /// already guarantees it for vertices that could snap, and the clamp covers the ones a
+    /// cut leaves unsnapped (see [`super::Cutter::cut`]), whose cut points then pass the
+    /// plane by at most the snapping distance instead of making slivers.
     fn classify_new_edges(&mut self, positions: &[DVec3], parallel: bool) {
         let polygon = self.polygon;
+        let keep = self.snap.relative.min(0.5);
         let work = |e: &mut EdgeRec| {
             let (p, q) = (positions[e.lo.idx()], positions[e.hi.idx()]);
             let (dp, dq) = (polygon.signed_distance(p), polygon.signed_distance(q));
@@ -489,6 +496,9 @@ impl<'a> CutSession<'a> {
                 0.5
             };
             e.cut = polygon.segment_crosses_inside_filtered(p, q, dp, dq);
+            if e.cut {
+                e.t = e.t.clamp(keep, 1.0 - keep);
+            }
         };
         let new = &mut self.edges[self.edges_classified..];
         if parallel {
@@ -511,41 +521,71 @@ impl<'a> CutSession<'a> {
         }
     }
 
-    /// Barycentric weights of a section end with respect to the sorted face `v`.
-    fn end_weights(&self, v: [VertexId; 3], end: SectionEnd) -> [f64; 3] {
+    /// Barycentric weights of a section end with respect to the sorted face `v`; an uncut
+    /// edge's crossing taken at parameter `t`.
+    fn end_weights(&self, v: [VertexId; 3], end: SectionEnd, t: f64) -> [f64; 3] {
         let mut w = [0.0; 3];
         let slot = |x: VertexId| v.iter().position(|&y| y == x).unwrap_or(0);
         match end {
             SectionEnd::Vertex(x) => w[slot(x)] = 1.0,
             SectionEnd::Edge(r) => {
                 let e = &self.edges[r as usize];
-                w[slot(e.lo)] += 1.0 - e.t;
-                w[slot(e.hi)] += e.t;
+                w[slot(e.lo)] += 1.0 - t;
+                w[slot(e.hi)] += t;
             }
         }
         w
     }
 
-    /// Face points of the faces recorded since the last allocation: where C's contour
-    /// crosses the face's section segment, kept `face_margin` away from its ends (the crack
-    /// tip needs no precision the tables could use, and a face point near an edge or a
-    /// vertex would make slivers).
-    fn compute_new_faces(&mut self, positions: &[DVec3], parallel: bool) {
+    /// Face points of the faces recorded since the last allocation (see the module docs
+    /// of [`super::options::CutOptions::face_point_margin`]).
+    ///
+    /// The face point lies on the segment from the face's section end in C to a point of
+    /// its uncut edge: where C's contour crosses the segment, kept `face_margin` from its
+    /// ends. The segment's outside end is the uncut edge's crossing moved towards the
+    /// edge's middle (by `face_margin` of the edge), as far as that keeps the face point
+    /// within 90% of the snapping distance of the plane: a crossing near a vertex would put
+    /// the face point next to an edge of its face (a thin or flat child), while a face
+    /// point far from the plane would make edges from the crack tip cross the plane inside
+    /// C by more than snapped vertices do. The true crossing is always allowed (its face
+    /// point is off the plane only as much as the inside end, a snapped vertex, is).
+    fn compute_new_faces(&mut self, positions: &[DVec3], scales: &[f64], parallel: bool) {
         let start = self.faces_allocated;
         let computed: Vec<[f64; 3]> = {
             let this = &*self;
             let work = |f: &FaceRec| {
-                let (pi, po) = (
-                    this.end_position(positions, f.ends[0]),
-                    this.end_position(positions, f.ends[1]),
-                );
+                let pi = this.end_position(positions, f.ends[0]);
+                let po = this.end_position(positions, f.ends[1]);
+                let margin = this.face_margin;
                 let s = this
                     .polygon
                     .contour_parameter(pi, po)
-                    .clamp(this.face_margin, 1.0 - this.face_margin);
+                    .clamp(margin, 1.0 - margin);
+                let t = match f.ends[1] {
+                    SectionEnd::Edge(r) => {
+                        let e = &this.edges[r as usize];
+                        let d = |v: VertexId| this.polygon.signed_distance(positions[v.idx()]);
+                        let (dlo, dhi, din) = (d(e.lo), d(e.hi), this.polygon.signed_distance(pi));
+                        let h = f.v.iter().map(|x| scales[x.idx()]).fold(0.0, f64::max);
+                        let budget = 0.9 * this.snap.distance(h);
+                        // Face-point distance (1 - s) din + s (dlo + t (dhi - dlo)) within
+                        // ±budget: an interval of t around the true crossing.
+                        let slope = s * (dhi - dlo);
+                        let base = (1.0 - s) * din + s * dlo;
+                        let (a, b) = ((-budget - base) / slope, (budget - base) / slope);
+                        let (lo, hi) = (a.min(b).max(0.0), a.max(b).min(1.0));
+                        let wanted = e.t.clamp(margin, 1.0 - margin);
+                        if lo <= hi { wanted.clamp(lo, hi) } else { e.t }
+                    }
+                    SectionEnd::Vertex(_) => 0.0,
+                };
+                let t_in = match f.ends[0] {
+                    SectionEnd::Edge(r) => this.edges[r as usize].t,
+                    SectionEnd::Vertex(_) => 0.0,
+                };
                 let (wi, wo) = (
-                    this.end_weights(f.v, f.ends[0]),
-                    this.end_weights(f.v, f.ends[1]),
+                    this.end_weights(f.v, f.ends[0], t_in),
+                    this.end_weights(f.v, f.ends[1], t),
                 );
                 std::array::from_fn(|k| (1.0 - s) * wi[k] + s * wo[k])
             };

@@ -8,8 +8,8 @@ use super::options::{CutError, CutOptions, Scheme};
 use super::report::{CutResult, CutStats, CutTimes, SplitRecord};
 use super::split::{Children, split_tet};
 use super::tables::{NEG, ON, POS, Side};
-use super::unglue::{StarEntry, plan_copies};
-use crate::geom::{CutPolygon, DVec3};
+use super::unglue::{Copies, StarEntry, plan_copies};
+use crate::geom::{CutPolygon, DVec3, Sign};
 use crate::mesh::tables::TET_EDGES;
 use crate::mesh::{Attribute, FaceAdjacency, Tet, TetId, TetMesh, VertexId};
 use std::time::{Duration, Instant};
@@ -139,12 +139,17 @@ impl Cutter {
     /// Cuts the mesh with `polygon`: every tet C crosses is replaced by tets C does not
     /// cross (paper §3 steps 1–2), the cut points are duplicated for the two sides, and the
     /// vertices the cut passes through are duplicated where the sides separate.
+    ///
+    /// The cut is planned in full before the mesh changes. A snapped vertex that copies
+    /// cannot separate (a "pinched" one, see [`super::unglue`]) is left unsnapped and the
+    /// plan redone, which keeps the result a manifold mesh.
     pub fn cut(&mut self, polygon: &CutPolygon) -> Result<CutResult, CutError> {
         let opts = self.options;
         let start = Instant::now();
         let mut times = CutTimes::default();
         let n_vertices = self.mesh.nb_vertices();
         let n_tets = self.mesh.nb_tets();
+        let par = |n: usize| n >= opts.parallel_threshold;
 
         // Step 1: candidates, in the hierarchy's depth-first order (deterministic: the
         // hierarchy only depends on the mesh and the cuts applied to it).
@@ -157,83 +162,50 @@ impl Cutter {
             n_tets / 32 >= opts.parallel_threshold,
         );
         let cand = &found.tets;
-        let states = &found.states;
+        let mut states = found.states.clone();
         let tets: Vec<Tet> = cand.iter().map(|t| self.mesh.tet(*t)).collect();
         times.query = start.elapsed().as_secs_f64();
 
-        // Step 2a: classify edges and faces once, place and allocate the new vertices.
-        let t = Instant::now();
-        let par = |n: usize| n >= opts.parallel_threshold;
-        let mut session = CutSession::new(
-            polygon,
-            opts.snap,
-            opts.face_point_margin,
-            &mut self.scratch,
-            n_vertices,
-        );
-        let classes = session.classify(self.mesh.positions(), &tets, states, par(tets.len()));
-        let first = VertexId::from_usize(n_vertices);
-        let (bielser, mut origins) = match opts.scheme {
-            Scheme::Lut => (None, session.allocate(first)),
-            Scheme::Bielser17 => {
-                let (nodes, o) = Bielser17Nodes::allocate(&session, &tets, &classes, first);
-                (Some(nodes), o)
+        let mut unsnapped: Vec<VertexId> = Vec::new();
+        let plan = loop {
+            let plan = self.plan(polygon, cand, &tets, &states, &mut times, par)?;
+            if plan.copies.pinched.is_empty() {
+                break plan;
             }
+            for &v in &plan.copies.pinched {
+                let state = self.unsnapped_state(polygon, v, &tets);
+                for (st, tet) in states.iter_mut().zip(&tets) {
+                    for (s, x) in st.iter_mut().zip(tet) {
+                        if *x == v {
+                            *s = state;
+                        }
+                    }
+                }
+            }
+            unsnapped.extend_from_slice(&plan.copies.pinched);
         };
-        let split_count: usize = classes.iter().filter(|c| c.is_split()).count();
-        let max_children = if bielser.is_some() { 17 } else { 13 };
-        if n_vertices + origins.len() + 4 * (tets.len() + split_count * max_children) > MAX_ELEMENTS
-            || n_tets + split_count * max_children > MAX_ELEMENTS
-        {
-            return Err(CutError::TooLarge {
-                max: MAX_ELEMENTS as u32,
-            });
-        }
-        let (edges_crossed, edges_cut) = session.edge_counts();
-        add_vertices(&mut self.mesh, &mut self.scales, &origins);
-        times.classify = t.elapsed().as_secs_f64();
 
-        // Step 2b: replace the cut tets.
+        // Commit: new vertices, children, copies.
         let t = Instant::now();
-        let split_one = |k: usize, out: &mut Children| -> bool {
-            match &bielser {
-                None => split_tet(&session, &tets[k], &classes[k], out),
-                Some(nodes) => nodes.split(&tets[k], &classes[k], out),
-            }
-        };
-        let split_at: Vec<usize> = (0..tets.len()).filter(|&k| classes[k].is_split()).collect();
-        let computed: Vec<Children> = if par(split_at.len()) {
-            use rayon::prelude::*;
-            split_at
-                .par_iter()
-                .map(|&k| {
-                    let mut c = Children::new();
-                    split_one(k, &mut c);
-                    c
-                })
-                .collect()
-        } else {
-            Vec::new()
-        };
+        let Plan {
+            mut origins,
+            children,
+            split_at,
+            copies,
+            snapped,
+            edges_crossed,
+            edges_cut,
+        } = plan;
+        add_vertices(&mut self.mesh, &mut self.scales, &origins);
         self.cuts_applied += 1;
         let mark = self.cuts_applied as f64;
         let mut by_case = [0usize; 10];
         let mut created = 0usize;
-        let mut star: Vec<StarEntry> = Vec::new();
         let mut appended_parents: Vec<u32> = Vec::new();
         let mut records: Vec<SplitRecord> = Vec::with_capacity(split_at.len());
-        let first_appended = self.mesh.nb_tets();
-        self.bvh
-            .reserve_tets(n_tets + split_at.len() * max_children);
-        let mut buffer = Children::new();
-        for (i, &k) in split_at.iter().enumerate() {
-            let ch = match computed.get(i) {
-                Some(c) => c,
-                None => {
-                    split_one(k, &mut buffer);
-                    &buffer
-                }
-            };
+        let max_children = children.iter().map(|c| c.len).sum::<usize>();
+        self.bvh.reserve_tets(n_tets + max_children);
+        for (ch, &k) in children.iter().zip(&split_at) {
             let parent = cand[k];
             by_case[ch.case as usize] += 1;
             created += ch.len;
@@ -252,82 +224,32 @@ impl Cutter {
                 parent,
                 (first_extra..first_extra + ch.len - 1).map(TetId::from_usize),
             );
-            for c in 0..ch.len {
-                let on = ch.on_cut[c];
-                if on != 0 {
-                    let slot = if c == 0 {
-                        parent
-                    } else {
-                        TetId::from_usize(first_extra + c - 1)
-                    };
-                    for j in 0..4 {
-                        if on & (1 << j) != 0 {
-                            star.push(StarEntry {
-                                vertex: ch.tets[c][j],
-                                tet: slot,
-                                side: ch.sides[c],
-                            });
-                        }
-                    }
-                }
-            }
         }
-        drop(session);
         if let Some(col) = self.mesh.cell_data.get_mut(CUT_COLUMN) {
             for &k in &split_at {
                 col.values[cand[k].idx()] = mark;
             }
         }
         self.mesh.cell_data.push_copies(&appended_parents);
-        debug_assert_eq!(self.mesh.nb_tets(), first_appended + appended_parents.len());
-        times.split = t.elapsed().as_secs_f64();
+        times.split += t.elapsed().as_secs_f64();
 
-        // Vertices on the cut: one copy per group of tets the cut surface separates.
         let t = Instant::now();
-        let mut vertex_copies = 0;
-        let mut snapped: Vec<VertexId> = Vec::new();
-        for (k, c) in classes.iter().enumerate() {
-            if c.touches_cut() {
-                for (j, &s) in c.states.iter().enumerate() {
-                    if s == ON {
-                        snapped.push(tets[k][j]);
-                    }
-                }
-                if !c.is_split() && opts.scheme == Scheme::Lut {
-                    let side = self.unsplit_side(polygon, &tets[k], &c.states);
-                    for (j, &s) in c.states.iter().enumerate() {
-                        if s == ON {
-                            star.push(StarEntry {
-                                vertex: tets[k][j],
-                                tet: cand[k],
-                                side,
-                            });
-                        }
+        let vertex_copies = copies.groups.len();
+        for (v, members) in copies.groups {
+            let copy = self.mesh.push_vertex(self.mesh.position(v));
+            self.scales.push(self.scales[v.idx()]);
+            self.mesh.point_data.push_copy(v.idx());
+            origins.push(VertexOrigin::Copy { of: v });
+            let all = self.mesh.tets_mut();
+            for t in members {
+                for x in all[t.idx()].iter_mut() {
+                    if *x == v {
+                        *x = copy;
                     }
                 }
             }
         }
-        snapped.sort_unstable();
-        snapped.dedup();
-        if opts.scheme == Scheme::Lut {
-            let copies = plan_copies(self.mesh.tets(), &snapped, &star);
-            for (v, members) in copies.groups {
-                let copy = self.mesh.push_vertex(self.mesh.position(v));
-                self.scales.push(self.scales[v.idx()]);
-                self.mesh.point_data.push_copy(v.idx());
-                origins.push(VertexOrigin::Copy { of: v });
-                vertex_copies += 1;
-                let tets = self.mesh.tets_mut();
-                for t in members {
-                    for x in tets[t.idx()].iter_mut() {
-                        if *x == v {
-                            *x = copy;
-                        }
-                    }
-                }
-            }
-        }
-        times.unglue = t.elapsed().as_secs_f64();
+        times.unglue += t.elapsed().as_secs_f64();
         times.cut = start.elapsed().as_secs_f64();
 
         let t = Instant::now();
@@ -356,6 +278,7 @@ impl Cutter {
             face_points,
             vertex_copies,
             vertices_snapped: snapped.len(),
+            vertices_unsnapped: unsnapped.len(),
             edges_crossed,
             edges_cut,
             tets_after: self.mesh.nb_tets(),
@@ -365,10 +288,171 @@ impl Cutter {
         };
         Ok(CutResult {
             stats,
-            first_new_vertex: first,
+            first_new_vertex: VertexId::from_usize(n_vertices),
             origins,
             splits: records,
         })
+    }
+
+    /// Steps 2a and 2b without touching the mesh: classification, new vertices, children,
+    /// and the copies of snapped vertices (with the tets' final slots).
+    fn plan(
+        &mut self,
+        polygon: &CutPolygon,
+        cand: &[TetId],
+        tets: &[Tet],
+        states: &[[u8; 4]],
+        times: &mut CutTimes,
+        par: impl Fn(usize) -> bool,
+    ) -> Result<Plan, CutError> {
+        let opts = self.options;
+        let n_vertices = self.mesh.nb_vertices();
+        let n_tets = self.mesh.nb_tets();
+        let t = Instant::now();
+        let mut session = CutSession::new(
+            polygon,
+            opts.snap,
+            opts.face_point_margin,
+            &mut self.scratch,
+            n_vertices,
+        );
+        let classes = session.classify(
+            self.mesh.positions(),
+            &self.scales,
+            tets,
+            states,
+            par(tets.len()),
+        );
+        let first = VertexId::from_usize(n_vertices);
+        let (bielser, origins) = match opts.scheme {
+            Scheme::Lut => (None, session.allocate(first)),
+            Scheme::Bielser17 => {
+                let (nodes, o) = Bielser17Nodes::allocate(&session, tets, &classes, first);
+                (Some(nodes), o)
+            }
+        };
+        let split_at: Vec<usize> = (0..tets.len()).filter(|&k| classes[k].is_split()).collect();
+        let max_children = if bielser.is_some() { 17 } else { 13 };
+        if n_vertices + origins.len() + 4 * (tets.len() + split_at.len() * max_children)
+            > MAX_ELEMENTS
+            || n_tets + split_at.len() * max_children > MAX_ELEMENTS
+        {
+            return Err(CutError::TooLarge {
+                max: MAX_ELEMENTS as u32,
+            });
+        }
+        let (edges_crossed, edges_cut) = session.edge_counts();
+        times.classify += t.elapsed().as_secs_f64();
+
+        let t = Instant::now();
+        let split_one = |k: usize| -> Children {
+            let mut c = Children::new();
+            match &bielser {
+                None => split_tet(&session, &tets[k], &classes[k], &mut c),
+                Some(nodes) => nodes.split(&tets[k], &classes[k], &mut c),
+            };
+            c
+        };
+        let children: Vec<Children> = if par(split_at.len()) {
+            use rayon::prelude::*;
+            split_at.par_iter().map(|&k| split_one(k)).collect()
+        } else {
+            split_at.iter().map(|&k| split_one(k)).collect()
+        };
+        drop(session);
+        times.split += t.elapsed().as_secs_f64();
+
+        // The tets around snapped vertices, with the slots they will have.
+        let t = Instant::now();
+        let mut snapped: Vec<VertexId> = Vec::new();
+        let mut star: Vec<StarEntry> = Vec::new();
+        let mut next_slot = n_tets;
+        let mut split_iter = split_at.iter().zip(&children).peekable();
+        for (k, c) in classes.iter().enumerate() {
+            let split = matches!(split_iter.peek(), Some((i, _)) if **i == k);
+            if split {
+                let (_, ch) = split_iter.next().expect("peeked");
+                let parent = cand[k];
+                for i in 0..ch.len {
+                    let slot = if i == 0 {
+                        parent
+                    } else {
+                        next_slot += 1;
+                        TetId::from_usize(next_slot - 1)
+                    };
+                    let on = ch.on_cut[i];
+                    for j in 0..4 {
+                        if on & (1 << j) != 0 {
+                            star.push(StarEntry {
+                                vertex: ch.tets[i][j],
+                                tet: slot,
+                                verts: ch.tets[i],
+                                side: ch.sides[i],
+                            });
+                        }
+                    }
+                }
+            }
+            if c.touches_cut() {
+                for (j, &s) in c.states.iter().enumerate() {
+                    if s == ON {
+                        snapped.push(tets[k][j]);
+                    }
+                }
+                if !split && opts.scheme == Scheme::Lut {
+                    let side = self.unsplit_side(polygon, &tets[k], &c.states);
+                    for (j, &s) in c.states.iter().enumerate() {
+                        if s == ON {
+                            star.push(StarEntry {
+                                vertex: tets[k][j],
+                                tet: cand[k],
+                                verts: tets[k],
+                                side,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        snapped.sort_unstable();
+        snapped.dedup();
+        let copies = match opts.scheme {
+            Scheme::Lut => plan_copies(&snapped, &star),
+            Scheme::Bielser17 => Copies::default(),
+        };
+        times.unglue += t.elapsed().as_secs_f64();
+        Ok(Plan {
+            origins,
+            children,
+            split_at,
+            copies,
+            snapped,
+            edges_crossed,
+            edges_cut,
+        })
+    }
+
+    /// The state of a snapped vertex left unsnapped: its exact side; for a vertex exactly
+    /// on the plane, the side of its neighbours off the plane when they are all on one
+    /// side (then no edge from it crosses the plane at it, which would make a cut point
+    /// coincide with it), positive otherwise.
+    fn unsnapped_state(&self, polygon: &CutPolygon, v: VertexId, tets: &[Tet]) -> u8 {
+        match polygon.side(self.mesh.position(v)) {
+            Sign::Negative => return NEG,
+            Sign::Positive => return POS,
+            Sign::Zero => {}
+        }
+        let (mut pos, mut neg) = (false, false);
+        for t in tets.iter().filter(|t| t.contains(&v)) {
+            for &x in t {
+                match polygon.side(self.mesh.position(x)) {
+                    Sign::Positive => pos = true,
+                    Sign::Negative => neg = true,
+                    Sign::Zero => {}
+                }
+            }
+        }
+        if neg && !pos { NEG } else { POS }
     }
 
     /// The side of a tet the tables leave whole but that touches the cut at a vertex: the
@@ -420,6 +504,19 @@ fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrig
         mesh.push_vertex(p);
         scales.push(scale);
     }
+}
+
+/// A cut planned in full, before the mesh changes.
+struct Plan {
+    origins: Vec<VertexOrigin>,
+    /// Children of each split candidate, in candidate order.
+    children: Vec<Children>,
+    /// Candidates (indices) that are split.
+    split_at: Vec<usize>,
+    copies: Copies,
+    snapped: Vec<VertexId>,
+    edges_crossed: usize,
+    edges_cut: usize,
 }
 
 /// Cuts `mesh` with `polygon` once (building the acceleration structure, timed in

@@ -49,6 +49,9 @@ pub struct CutStats {
     pub vertex_copies: usize,
     /// Distinct vertices snapped onto the cut.
     pub vertices_snapped: usize,
+    /// Vertices within snapping distance left unsnapped because the sides could not be
+    /// separated at them ([`super::unglue`]: a pinch).
+    pub vertices_unsnapped: usize,
     /// Edges crossed by the plane, and the cut ones among them (crossed inside C).
     pub edges_crossed: usize,
     pub edges_cut: usize,
@@ -88,6 +91,7 @@ impl CutStats {
             "face_points": self.face_points,
             "vertex_copies": self.vertex_copies,
             "vertices_snapped": self.vertices_snapped,
+            "vertices_unsnapped": self.vertices_unsnapped,
             "edges_crossed": self.edges_crossed,
             "edges_cut": self.edges_cut,
             "tets_after": self.tets_after,

@@ -28,8 +28,10 @@
 //! The crack opens the tet along K into a *slit domain* whose boundary is the subdivided
 //! faces plus K twice. Candidate children are the 4-subsets of the local points whose
 //! barycentric determinant (their volume as a fraction of the parent's) keeps one sign over
-//! many sampled positions, extremes included, and that never mix a copy of one side with a
-//! vertex of the other. A depth-first exact cover then closes the boundary face by face
+//! many sampled positions, extremes included, that never mix a copy of one side with a
+//! vertex of the other, and that have a vertex off the cut plane (sampled positions are
+//! independent, but the points on the cut are in fact coplanar: a child made of them only
+//! would be flat). A depth-first exact cover then closes the boundary face by face
 //! (each open face is closed by a candidate having it as an outward face); positive tets
 //! whose faces match pairwise and whose free faces are exactly the domain boundary tile the
 //! domain (the covering degree is the winding number of the boundary, 1 inside). Depth is
@@ -335,8 +337,8 @@ fn child_fraction(g: &Geometry, c: [u8; 4]) -> f64 {
     det4(c.map(|p| g.bary[p as usize]))
 }
 
-/// Sampled parameter sets: random ones and every combination of extremes.
-fn samples(a: &Analysis, rng: &mut Rng, random: usize, extremes: bool) -> Vec<Geometry> {
+/// Sampled parameter sets: every combination of extremes, then random ones.
+fn samples(a: &Analysis, rng: &mut Rng, random: usize) -> Vec<Geometry> {
     let crossed: Vec<usize> = (0..6)
         .filter(|&e| is_crossed(a.states[TET_EDGES[e][0]], a.states[TET_EDGES[e][1]]))
         .collect();
@@ -354,13 +356,11 @@ fn samples(a: &Analysis, rng: &mut Rng, random: usize, extremes: bool) -> Vec<Ge
         }
         out.push(geometry(a, &t, &s));
     };
-    if extremes {
-        for bits in 0..(1u32 << nparams) {
-            let vals: Vec<f64> = (0..nparams)
-                .map(|k| if bits & (1 << k) != 0 { 0.999 } else { 0.001 })
-                .collect();
-            push(&vals);
-        }
+    for bits in 0..(1u32 << nparams) {
+        let vals: Vec<f64> = (0..nparams)
+            .map(|k| if bits & (1 << k) != 0 { 0.999 } else { 0.001 })
+            .collect();
+        push(&vals);
     }
     for _ in 0..random {
         let vals: Vec<f64> = (0..nparams).map(|_| rng.unit()).collect();
@@ -575,10 +575,41 @@ fn position(g: &Geometry, p: u8) -> [f64; 3] {
     std::array::from_fn(|k| (0..4).map(|i| b[i] * REGULAR[i][k]).sum())
 }
 
-/// Mean over `geoms` of the smallest child dihedral angle: the tie-break among minimal
-/// tilings.
-fn quality(geoms: &[Geometry], children: &[[u8; 4]]) -> f64 {
-    let total: f64 = geoms
+/// Plausible placements for judging quality: a plane crossing the tet as the states say
+/// (signed distances of at least a tenth of the largest, as snapping ensures), crossings
+/// where that plane puts them, face points in the middle half of their segments, uncut
+/// crossings kept in the middle half of their edges (as the cut places them).
+fn realistic_samples(a: &Analysis, rng: &mut Rng, n: usize) -> Vec<Geometry> {
+    (0..n)
+        .map(|_| {
+            let d: [f64; 4] = std::array::from_fn(|i| match a.states[i] {
+                POS => 0.1 + 0.9 * rng.unit(),
+                NEG => -0.1 - 0.9 * rng.unit(),
+                _ => 0.0,
+            });
+            let t: [f64; 6] = std::array::from_fn(|e| {
+                let [u, w] = TET_EDGES[e];
+                if is_crossed(a.states[u], a.states[w]) {
+                    let t = d[u] / (d[u] - d[w]);
+                    if is_cut(a.cut_mask, e) {
+                        t
+                    } else {
+                        t.clamp(0.25, 0.75)
+                    }
+                } else {
+                    0.5
+                }
+            });
+            let s: [f64; 4] = std::array::from_fn(|_| 0.25 + 0.5 * rng.unit());
+            geometry(a, &t, &s)
+        })
+        .collect()
+}
+
+/// The smallest child dihedral angle over `geoms`, and its mean: the tie-break among
+/// minimal tilings (worst case first).
+fn quality(geoms: &[Geometry], children: &[[u8; 4]]) -> (f64, f64) {
+    let per: Vec<f64> = geoms
         .iter()
         .map(|g| {
             children
@@ -586,8 +617,9 @@ fn quality(geoms: &[Geometry], children: &[[u8; 4]]) -> f64 {
                 .map(|c| min_dihedral(c.map(|p| position(g, p))))
                 .fold(f64::INFINITY, f64::min)
         })
-        .sum();
-    total / geoms.len() as f64
+        .collect();
+    let worst = per.iter().copied().fold(f64::INFINITY, f64::min);
+    (worst, per.iter().sum::<f64>() / per.len() as f64)
 }
 
 /// Generates the entry of one configuration, or `None` when the tet is not split.
@@ -601,8 +633,8 @@ pub fn generate_entry(states: [u8; 4], cut_mask: u8) -> Option<Entry> {
     let a = analyze(states, cut_mask);
     let config = config_index(states, cut_mask);
     let mut rng = Rng(0x5EED_0000 + config as u64);
-    let geoms = samples(&a, &mut rng, 256, true);
-    let quality_geoms = samples(&a, &mut Rng(0xC0FFEE + config as u64), 64, false);
+    let geoms = samples(&a, &mut rng, 256);
+    let quality_geoms = realistic_samples(&a, &mut Rng(0xC0FFEE + config as u64), 256);
     // Points present.
     let mut points: Vec<u8> = (0..4).collect();
     for e in 0..6 {
@@ -629,6 +661,12 @@ pub fn generate_entry(states: [u8; 4], cut_mask: u8) -> Option<Entry> {
                     let side_pos = c.iter().any(|&p| point_side(states, p) > 0);
                     let side_neg = c.iter().any(|&p| point_side(states, p) < 0);
                     if (copies_pos && side_neg) || (copies_neg && side_pos) {
+                        continue;
+                    }
+                    // Cut points, face points and snapped vertices all lie on the cut plane
+                    // (up to snapping): a child made of them only is flat, whatever its
+                    // barycentric volume for unconstrained positions says.
+                    if !c.iter().any(|&p| p < 4 && states[p as usize] != ON) {
                         continue;
                     }
                     let mut sign = 0.0f64;
@@ -672,7 +710,9 @@ pub fn generate_entry(states: [u8; 4], cut_mask: u8) -> Option<Entry> {
     let neg_vertex = (0..4)
         .find(|&i| states[i] == NEG)
         .expect("a split tet has a NEG vertex") as u8;
-    let mut best: Option<(usize, f64, Vec<[u8; 4]>)> = None;
+    // (children count, quality, children) of the best tiling so far.
+    type Best = (usize, (f64, f64), Vec<[u8; 4]>);
+    let mut best: Option<Best> = None;
     let m = a.crack.len();
     for tri in polygon_triangulations(m) {
         let mut bdry = face_bdry.clone();
@@ -716,7 +756,10 @@ pub fn generate_entry(states: [u8; 4], cut_mask: u8) -> Option<Entry> {
                 let better = match &best {
                     None => true,
                     Some((bn, bq, _)) => {
-                        children.len() < *bn || (children.len() == *bn && q > *bq + 1e-12)
+                        children.len() < *bn
+                            || (children.len() == *bn
+                                && (q.0 > bq.0 + 1e-12
+                                    || (q.0 >= bq.0 - 1e-12 && q.1 > bq.1 + 1e-12)))
                     }
                 };
                 if better {

@@ -9,26 +9,38 @@
 //! the cut surface; a face between a positive and a negative tet is on the cut surface
 //! (its vertices can only be on the cut).
 //!
-//! For an interior vertex the groups are exactly the two sides; a boundary vertex can have
-//! two groups on one side (a saddle of the boundary that the plane meets twice around the
-//! vertex), which this rule also handles. The first group (positive side first, then by
-//! lowest tet) keeps the vertex; the others get copies, allocated in vertex order.
+//! For an interior vertex the groups are the two sides; a boundary vertex can have two
+//! groups on one side (a saddle of the boundary that the plane meets twice around it),
+//! which this rule also handles. The first group (positive side first, then in the order
+//! the tets were listed) keeps the vertex; the others get copies, allocated in vertex
+//! order.
+//!
+//! One configuration cannot be separated by copies: a group whose tets surround the vertex
+//! without reaching around it as a disk — its link (the faces opposite the vertex) is an
+//! annulus, not a disk. It happens when a boundary vertex is snapped onto a plane running
+//! just above the boundary: the layer between boundary and cut thins to nothing at the
+//! vertex. Such vertices are reported as *pinched*; the cut then leaves them unsnapped
+//! ([`super::Cutter::cut`]).
 
 use super::tables::Side;
 use crate::mesh::{Tet, TetId, VertexId};
 
-/// A tet around an `ON` vertex: its slot and side.
+/// A tet around an `ON` vertex: its slot, vertices and side.
 #[derive(Clone, Copy, Debug)]
 pub struct StarEntry {
     pub vertex: VertexId,
     pub tet: TetId,
+    pub verts: Tet,
     pub side: Side,
 }
 
-/// The copies to make.
+/// The copies to make, and the vertices that copies cannot separate.
+#[derive(Debug, Default)]
 pub struct Copies {
-    /// (vertex, entries of the tets that take the copy), in allocation order.
+    /// (vertex, the tets that take a new copy of it), in allocation order.
     pub groups: Vec<(VertexId, Vec<TetId>)>,
+    /// Vertices with a group of tets whose link is not a disk.
+    pub pinched: Vec<VertexId>,
 }
 
 fn find(parent: &mut [u32], mut i: u32) -> u32 {
@@ -41,8 +53,8 @@ fn find(parent: &mut [u32], mut i: u32) -> u32 {
 
 /// Groups the tets around each `ON` vertex and decides the copies (see the module docs).
 /// `entries` lists every tet around every vertex of `on_cut` (sorted, distinct), in a
-/// deterministic order; the tet's vertex array is read from `tets`.
-pub fn plan_copies(tets: &[Tet], on_cut: &[VertexId], entries: &[StarEntry]) -> Copies {
+/// deterministic order.
+pub fn plan_copies(on_cut: &[VertexId], entries: &[StarEntry]) -> Copies {
     // Bucket the entries by vertex (a counting sort: stable, linear).
     let slot = |v: VertexId| on_cut.binary_search(&v).unwrap_or(0);
     let mut start = vec![0usize; on_cut.len() + 1];
@@ -53,22 +65,18 @@ pub fn plan_copies(tets: &[Tet], on_cut: &[VertexId], entries: &[StarEntry]) -> 
         start[i + 1] += start[i];
     }
     let mut fill = start.clone();
-    let mut sorted = vec![
-        entries.first().copied().unwrap_or(StarEntry {
-            vertex: VertexId::INVALID,
-            tet: TetId::INVALID,
-            side: Side::Straddle
-        });
-        entries.len()
-    ];
+    let mut sorted = entries.to_vec();
     for e in entries {
         let s = slot(e.vertex);
         sorted[fill[s]] = *e;
         fill[s] += 1;
     }
-    let mut groups = Vec::new();
+    let mut out = Copies::default();
     let mut faces = FaceTable::default();
     let mut parent: Vec<u32> = Vec::new();
+    let mut inner: Vec<u32> = Vec::new();
+    let mut link_vertices: Vec<(u32, VertexId)> = Vec::new();
+    let mut others: Vec<[VertexId; 3]> = Vec::new();
     for w in start.windows(2) {
         let run = &sorted[w[0]..w[1]];
         if run.is_empty() {
@@ -83,23 +91,28 @@ pub fn plan_copies(tets: &[Tet], on_cut: &[VertexId], entries: &[StarEntry]) -> 
         parent.clear();
         parent.extend(0..run.len() as u32);
         faces.reset(run.len() * 3);
+        others.clear();
+        // Link edges shared by two tets of one side, to be counted per group.
+        let mut shared: Vec<(u32, u32)> = Vec::new();
         for (k, e) in run.iter().enumerate() {
-            let t = &tets[e.tet.idx()];
-            let mut others = [VertexId::INVALID; 3];
+            let t = e.verts;
+            let mut o = [VertexId::INVALID; 3];
             let mut n = 0;
-            for &x in t {
+            for &x in &t {
                 if x != v && n < 3 {
-                    others[n] = x;
+                    o[n] = x;
                     n += 1;
                 }
             }
             debug_assert_eq!(n, 3, "tet {} does not hold vertex {v}", e.tet);
+            others.push(o);
             for (a, b) in [(0, 1), (0, 2), (1, 2)] {
-                let (x, y) = (others[a].min(others[b]), others[a].max(others[b]));
+                let (x, y) = (o[a].min(o[b]), o[a].max(o[b]));
                 let key = (x.0 as u64) << 32 | y.0 as u64;
                 // The other tet through face (v, x, y), if seen: same side joins groups.
                 if let Some(j) = faces.insert(key, k as u32) {
                     if run[j as usize].side == e.side {
+                        shared.push((j, k as u32));
                         let (ri, rj) = (find(&mut parent, j), find(&mut parent, k as u32));
                         if ri != rj {
                             parent[ri.max(rj) as usize] = ri.min(rj);
@@ -108,12 +121,40 @@ pub fn plan_copies(tets: &[Tet], on_cut: &[VertexId], entries: &[StarEntry]) -> 
                 }
             }
         }
-        // Groups in order: positive side first, then by first entry (unions keep the
-        // smaller index as root, so a root is its group's first entry).
         for k in 0..run.len() as u32 {
             let r = find(&mut parent, k);
             parent[k as usize] = r;
         }
+        // A group's link is a disk (or a sphere) when its Euler characteristic V - E + F
+        // is 1 (or 2): F = its tets, E = 3F minus the link edges two of them share.
+        inner.clear();
+        inner.resize(run.len(), 0);
+        for &(j, _) in &shared {
+            inner[parent[j as usize] as usize] += 1;
+        }
+        link_vertices.clear();
+        for (k, o) in others.iter().enumerate() {
+            for &x in o {
+                link_vertices.push((parent[k], x));
+            }
+        }
+        link_vertices.sort_unstable();
+        link_vertices.dedup();
+        let mut pinched = false;
+        for root in (0..run.len() as u32).filter(|&k| parent[k as usize] == k) {
+            let f = parent.iter().filter(|&&r| r == root).count() as i64;
+            let verts = link_vertices.iter().filter(|(r, _)| *r == root).count() as i64;
+            let chi = verts - 3 * f + inner[root as usize] as i64 + f;
+            if chi != 1 && chi != 2 {
+                pinched = true;
+            }
+        }
+        if pinched {
+            out.pinched.push(v);
+            continue;
+        }
+        // Groups in order: positive side first, then by first entry (unions keep the
+        // smaller index as root, so a root is its group's first entry).
         let mut roots: Vec<(bool, u32)> = (0..run.len() as u32)
             .filter(|&k| parent[k as usize] == k)
             .map(|k| (run[k as usize].side != Side::Positive, k))
@@ -124,10 +165,10 @@ pub fn plan_copies(tets: &[Tet], on_cut: &[VertexId], entries: &[StarEntry]) -> 
                 .filter(|&k| parent[k] == root)
                 .map(|k| run[k].tet)
                 .collect();
-            groups.push((v, members));
+            out.groups.push((v, members));
         }
     }
-    Copies { groups }
+    out
 }
 
 /// A small open-addressing table from a face key to the first tet seen through it, reused

@@ -286,6 +286,23 @@ impl CutPolygon {
         m
     }
 
+    /// Distance from the projection of `p` on the plane to C (0 inside; floating point).
+    pub fn projection_distance(&self, p: DVec3) -> f64 {
+        if self.inside_margin(p) >= 0.0 {
+            return 0.0;
+        }
+        let q = p - self.plane.normal * self.signed_distance(p);
+        let n = self.points.len();
+        let mut best = f64::INFINITY;
+        for i in 0..n {
+            let (a, b) = (self.points[i], self.points[(i + 1) % n]);
+            let ab = b - a;
+            let t = ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+            best = best.min(q.distance(a + ab * t));
+        }
+        best
+    }
+
     /// Exactly: whether the segment `a`–`b`, whose ends lie strictly on opposite sides of
     /// the plane, crosses it strictly inside C. The line `ab` passes on the inner side of
     /// every edge line of C: `orient3d(a, b, cᵢ, cᵢ₊₁)` has one non-zero sign for all `i`.
