@@ -53,8 +53,8 @@ struct Query<'a> {
     normal: DVec3,
     abs_normal: DVec3,
     offset: f64,
-    /// Twice the snapping tolerance: a snapped vertex is within `snap × scale` of the
-    /// plane and of C, so within twice that of C's box.
+    /// The snapping tolerance: a snapped vertex is within `snap × scale` of the plane,
+    /// and (its projection being within that distance of C) within twice that of C's box.
     reach: f64,
     /// Rounding slack of the floating-point box tests, at the scene's coordinate scale.
     slack: f64,
@@ -172,7 +172,7 @@ impl TetBvh {
             normal: polygon.normal(),
             abs_normal: polygon.normal().abs(),
             offset: polygon.plane().offset,
-            reach: 2.0 * snap.relative,
+            reach: snap.relative,
             slack: 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element()),
         };
         if parallel {
@@ -187,7 +187,8 @@ impl TetBvh {
     /// by the largest snapping distance below it.
     #[inline]
     fn node_may_touch(&self, q: &Query<'_>, n: &Node) -> bool {
-        let r = q.reach * n.max_scale + q.slack;
+        let plane_margin = q.reach * n.max_scale + q.slack;
+        let r = 2.0 * plane_margin;
         let b = &n.bbox;
         if b.min.x > q.cbox.max.x + r
             || b.min.y > q.cbox.max.y + r
@@ -200,7 +201,7 @@ impl TetBvh {
         }
         let c = (b.min + b.max) * 0.5;
         let e = (b.max - b.min) * 0.5;
-        (q.normal.dot(c) - q.offset).abs() <= q.abs_normal.dot(e) + r
+        (q.normal.dot(c) - q.offset).abs() <= q.abs_normal.dot(e) + plane_margin
     }
 
     fn leaf(&self, q: &Query<'_>, n: &Node, out: &mut Candidates) {

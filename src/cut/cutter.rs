@@ -167,7 +167,9 @@ impl Cutter {
         times.query = start.elapsed().as_secs_f64();
 
         let mut unsnapped: Vec<VertexId> = Vec::new();
+        let mut passes = 0;
         let plan = loop {
+            passes += 1;
             let plan = self.plan(polygon, cand, &tets, &states, &mut times, par)?;
             if plan.copies.pinched.is_empty() {
                 break plan;
@@ -279,6 +281,7 @@ impl Cutter {
             vertex_copies,
             vertices_snapped: snapped.len(),
             vertices_unsnapped: unsnapped.len(),
+            plan_passes: passes,
             edges_crossed,
             edges_cut,
             tets_after: self.mesh.nb_tets(),

@@ -52,6 +52,8 @@ pub struct CutStats {
     /// Vertices within snapping distance left unsnapped because the sides could not be
     /// separated at them ([`super::unglue`]: a pinch).
     pub vertices_unsnapped: usize,
+    /// Times the cut was planned: 1, plus one per round of unsnapping.
+    pub plan_passes: usize,
     /// Edges crossed by the plane, and the cut ones among them (crossed inside C).
     pub edges_crossed: usize,
     pub edges_cut: usize,
@@ -92,6 +94,7 @@ impl CutStats {
             "vertex_copies": self.vertex_copies,
             "vertices_snapped": self.vertices_snapped,
             "vertices_unsnapped": self.vertices_unsnapped,
+            "plan_passes": self.plan_passes,
             "edges_crossed": self.edges_crossed,
             "edges_cut": self.edges_cut,
             "tets_after": self.tets_after,

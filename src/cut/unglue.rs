@@ -73,38 +73,35 @@ pub fn plan_copies(on_cut: &[VertexId], entries: &[StarEntry]) -> Copies {
     }
     let mut out = Copies::default();
     let mut faces = FaceTable::default();
+    let mut verts = FaceTable::default();
     let mut parent: Vec<u32> = Vec::new();
-    let mut inner: Vec<u32> = Vec::new();
-    let mut link_vertices: Vec<(u32, VertexId)> = Vec::new();
+    let mut shared: Vec<u32> = Vec::new();
+    let mut count: Vec<[i64; 3]> = Vec::new();
     let mut others: Vec<[VertexId; 3]> = Vec::new();
     for w in start.windows(2) {
         let run = &sorted[w[0]..w[1]];
-        if run.is_empty() {
-            continue;
-        }
         let has_pos = run.iter().any(|e| e.side == Side::Positive);
         let has_neg = run.iter().any(|e| e.side == Side::Negative);
         if !(has_pos && has_neg) {
             continue;
         }
         let v = run[0].vertex;
+        let n = run.len();
         parent.clear();
-        parent.extend(0..run.len() as u32);
-        faces.reset(run.len() * 3);
+        parent.extend(0..n as u32);
+        faces.reset(n * 3);
         others.clear();
-        // Link edges shared by two tets of one side, to be counted per group.
-        let mut shared: Vec<(u32, u32)> = Vec::new();
+        shared.clear();
         for (k, e) in run.iter().enumerate() {
-            let t = e.verts;
             let mut o = [VertexId::INVALID; 3];
-            let mut n = 0;
-            for &x in &t {
-                if x != v && n < 3 {
-                    o[n] = x;
-                    n += 1;
+            let mut m = 0;
+            for &x in &e.verts {
+                if x != v && m < 3 {
+                    o[m] = x;
+                    m += 1;
                 }
             }
-            debug_assert_eq!(n, 3, "tet {} does not hold vertex {v}", e.tet);
+            debug_assert_eq!(m, 3, "tet {} does not hold vertex {v}", e.tet);
             others.push(o);
             for (a, b) in [(0, 1), (0, 2), (1, 2)] {
                 let (x, y) = (o[a].min(o[b]), o[a].max(o[b]));
@@ -112,7 +109,7 @@ pub fn plan_copies(on_cut: &[VertexId], entries: &[StarEntry]) -> Copies {
                 // The other tet through face (v, x, y), if seen: same side joins groups.
                 if let Some(j) = faces.insert(key, k as u32) {
                     if run[j as usize].side == e.side {
-                        shared.push((j, k as u32));
+                        shared.push(j);
                         let (ri, rj) = (find(&mut parent, j), find(&mut parent, k as u32));
                         if ri != rj {
                             parent[ri.max(rj) as usize] = ri.min(rj);
@@ -121,47 +118,46 @@ pub fn plan_copies(on_cut: &[VertexId], entries: &[StarEntry]) -> Copies {
                 }
             }
         }
-        for k in 0..run.len() as u32 {
+        for k in 0..n as u32 {
             let r = find(&mut parent, k);
             parent[k as usize] = r;
         }
-        // A group's link is a disk (or a sphere) when its Euler characteristic V - E + F
-        // is 1 (or 2): F = its tets, E = 3F minus the link edges two of them share.
-        inner.clear();
-        inner.resize(run.len(), 0);
-        for &(j, _) in &shared {
-            inner[parent[j as usize] as usize] += 1;
+        // A group's link is a disk (or a sphere) when its Euler characteristic V - E + F is
+        // 1 (or 2): F = its tets, E = 3F minus the link edges two of them share, V = the
+        // distinct vertices of its link triangles. count[root] = [F, shared edges, V].
+        count.clear();
+        count.resize(n, [0; 3]);
+        for &j in &shared {
+            count[parent[j as usize] as usize][1] += 1;
         }
-        link_vertices.clear();
+        verts.reset(n * 3);
         for (k, o) in others.iter().enumerate() {
+            let root = parent[k];
+            count[root as usize][0] += 1;
             for &x in o {
-                link_vertices.push((parent[k], x));
+                if verts.insert((root as u64) << 32 | x.0 as u64, 0).is_none() {
+                    count[root as usize][2] += 1;
+                }
             }
         }
-        link_vertices.sort_unstable();
-        link_vertices.dedup();
-        let mut pinched = false;
-        for root in (0..run.len() as u32).filter(|&k| parent[k as usize] == k) {
-            let f = parent.iter().filter(|&&r| r == root).count() as i64;
-            let verts = link_vertices.iter().filter(|(r, _)| *r == root).count() as i64;
-            let chi = verts - 3 * f + inner[root as usize] as i64 + f;
-            if chi != 1 && chi != 2 {
-                pinched = true;
-            }
-        }
+        let pinched = (0..n).any(|r| {
+            let [f, e, vv] = count[r];
+            let chi = vv - (3 * f - e) + f;
+            parent[r] == r as u32 && chi != 1 && chi != 2
+        });
         if pinched {
             out.pinched.push(v);
             continue;
         }
         // Groups in order: positive side first, then by first entry (unions keep the
         // smaller index as root, so a root is its group's first entry).
-        let mut roots: Vec<(bool, u32)> = (0..run.len() as u32)
+        let mut roots: Vec<(bool, u32)> = (0..n as u32)
             .filter(|&k| parent[k as usize] == k)
             .map(|k| (run[k as usize].side != Side::Positive, k))
             .collect();
         roots.sort_unstable();
         for &(_, root) in roots.iter().skip(1) {
-            let members: Vec<TetId> = (0..run.len())
+            let members: Vec<TetId> = (0..n)
                 .filter(|&k| parent[k] == root)
                 .map(|k| run[k].tet)
                 .collect();
@@ -171,8 +167,9 @@ pub fn plan_copies(on_cut: &[VertexId], entries: &[StarEntry]) -> Copies {
     out
 }
 
-/// A small open-addressing table from a face key to the first tet seen through it, reused
-/// for every vertex (a star has a few dozen tets: sorting them would cost more).
+/// A small open-addressing table from a key (a face, a vertex of a group) to the first
+/// value stored with it, reused for every vertex (a star has a few dozen tets: sorting them
+/// would cost more).
 #[derive(Default)]
 struct FaceTable {
     keys: Vec<u64>,

@@ -450,3 +450,60 @@ pub fn prepared(mesh: &TetMesh, options: CutOptions) -> (Cutter, Vec<f64>) {
     let scales = vertex_scales(mesh);
     (cutter, scales)
 }
+
+/// A structured grid of `n × n × n` unit cubes with integer coordinates, each cube split
+/// into six tets around its main diagonal (Kuhn/Freudenthal: conforming across cubes).
+pub fn grid_mesh(n: usize) -> TetMesh {
+    let id = |i: usize, j: usize, k: usize| (i + (n + 1) * (j + (n + 1) * k)) as u32;
+    let mut positions = Vec::new();
+    for k in 0..=n {
+        for j in 0..=n {
+            for i in 0..=n {
+                positions.push(DVec3::new(i as f64, j as f64, k as f64));
+            }
+        }
+    }
+    let mut tets = Vec::new();
+    let axes = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
+    let perms = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                for p in perms {
+                    let mut c = [i, j, k];
+                    let mut tet = [id(c[0], c[1], c[2]); 4];
+                    for (s, &a) in p.iter().enumerate() {
+                        for d in 0..3 {
+                            c[d] += axes[a][d];
+                        }
+                        tet[s + 1] = id(c[0], c[1], c[2]);
+                    }
+                    tets.push(tet);
+                }
+            }
+        }
+    }
+    TetMesh::from_arrays(positions, tets)
+        .expect("a valid grid")
+        .0
+}
+
+/// A square of half-size `r` centred at `c`, in the plane of unit normal `normal`.
+pub fn square(c: DVec3, normal: DVec3, r: f64) -> CutPolygon {
+    let u = normal.any_orthonormal_vector();
+    let w = normal.cross(u);
+    CutPolygon::new(&[
+        c + (u + w) * r,
+        c + (w - u) * r,
+        c - (u + w) * r,
+        c + (u - w) * r,
+    ])
+    .expect("a square")
+}
