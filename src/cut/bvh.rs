@@ -7,7 +7,7 @@
 //! in the same leaf (`next`). Each node also keeps the largest vertex scale below it, so a
 //! query knows how far from the plane a vertex may be and still be snapped onto the cut.
 
-use super::classify::{StateClassifier, is_candidate};
+use super::classify::{StateCache, StateClassifier, is_candidate};
 use crate::geom::{Aabb, CutPolygon, DVec3, Tolerance};
 use crate::mesh::{Tet, TetId};
 
@@ -32,6 +32,13 @@ pub struct TetBvh {
     items: Vec<TetId>,
     /// Per tet slot: the next tet of its leaf's chain.
     next: Vec<TetId>,
+}
+
+/// How a query runs: in parallel over subtrees (then without the cache), or on one
+/// thread with a cache of the states of vertices near the plane.
+pub struct QueryOptions<'c> {
+    pub parallel: bool,
+    pub cache: &'c mut StateCache,
 }
 
 /// What a query found: candidate tets with their vertex states, and how many tets it
@@ -155,8 +162,9 @@ impl TetBvh {
         tets: &[Tet],
         polygon: &CutPolygon,
         snap: Tolerance,
-        parallel: bool,
+        options: QueryOptions<'_>,
     ) -> Candidates {
+        let QueryOptions { parallel, cache } = options;
         let mut out = Candidates::default();
         if self.nodes.is_empty() {
             return out;
@@ -178,7 +186,8 @@ impl TetBvh {
         if parallel {
             self.visit_parallel(&q, 0, 0, &mut out);
         } else {
-            self.visit(&q, 0, &mut out);
+            cache.begin(positions.len());
+            self.visit(&q, 0, &mut out, Some(cache));
         }
         out
     }
@@ -204,12 +213,26 @@ impl TetBvh {
         (q.normal.dot(c) - q.offset).abs() <= q.abs_normal.dot(e) + plane_margin
     }
 
-    fn leaf(&self, q: &Query<'_>, n: &Node, out: &mut Candidates) {
+    fn leaf(
+        &self,
+        q: &Query<'_>,
+        n: &Node,
+        out: &mut Candidates,
+        cache: &mut Option<&mut StateCache>,
+    ) {
         for k in n.first..n.first + n.count {
             let mut t = self.items[k as usize];
             while t.is_valid() {
                 let tet = &q.tets[t.idx()];
-                let states = q.states.tet(q.positions, q.scales, tet);
+                let near = |v: crate::mesh::VertexId| {
+                    q.states.vertex(q.positions[v.idx()], q.scales[v.idx()])
+                };
+                let states = match cache {
+                    Some(c) => q
+                        .states
+                        .tet_with(q.positions, tet, |v| c.get(v, || near(v))),
+                    None => q.states.tet_with(q.positions, tet, near),
+                };
                 out.tested += 1;
                 if is_candidate(states) {
                     out.tets.push(t);
@@ -220,7 +243,13 @@ impl TetBvh {
         }
     }
 
-    fn visit(&self, q: &Query<'_>, node: u32, out: &mut Candidates) {
+    fn visit(
+        &self,
+        q: &Query<'_>,
+        node: u32,
+        out: &mut Candidates,
+        mut cache: Option<&mut StateCache>,
+    ) {
         let mut stack = vec![node];
         while let Some(i) = stack.pop() {
             let n = &self.nodes[i as usize];
@@ -228,7 +257,7 @@ impl TetBvh {
                 continue;
             }
             if n.count > 0 {
-                self.leaf(q, n, out);
+                self.leaf(q, n, out, &mut cache);
             } else {
                 stack.push(n.right);
                 stack.push(i + 1);
@@ -245,7 +274,7 @@ impl TetBvh {
             return;
         }
         if n.count > 0 || depth >= 6 {
-            return self.visit(q, node, out);
+            return self.visit(q, node, out, None);
         }
         let (mut a, mut b) = (Candidates::default(), Candidates::default());
         rayon::join(

@@ -72,6 +72,49 @@ pub(crate) struct FaceRec {
     pub ends: [SectionEnd; 2],
     pub w: [f64; 3],
     pub id: VertexId,
+    /// Dropped by [`CutSession::forget_vertex`]: never found, never allocated.
+    pub dead: bool,
+}
+
+/// Provisional ids ([`CutSession::edge_points`] and [`CutSession::face_point`] before
+/// allocation) have this bit set; ids of a pool stay below it.
+pub(crate) const PROVISIONAL: u32 = 1 << 31;
+/// Provisional face-point ids have this bit set too.
+const PROVISIONAL_FACE: u32 = 1 << 30;
+
+/// A per-vertex cache of states for one cut (epoch-stamped: never cleared), for the
+/// vertices near the plane that many tets share.
+#[derive(Clone, Debug, Default)]
+pub struct StateCache {
+    epoch: u32,
+    stamp: Vec<u32>,
+    state: Vec<u8>,
+}
+
+impl StateCache {
+    /// Starts a new cut over a pool of `n_vertices`.
+    pub fn begin(&mut self, n_vertices: usize) {
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.epoch = 1;
+        }
+        if self.stamp.len() < n_vertices {
+            self.stamp.resize(n_vertices, 0);
+            self.state.resize(n_vertices, 0);
+        }
+    }
+
+    /// The cached state of `v`, computed by `f` on first request in this cut.
+    #[inline]
+    pub fn get(&mut self, v: VertexId, f: impl FnOnce() -> u8) -> u8 {
+        let i = v.idx();
+        if self.stamp[i] != self.epoch {
+            self.stamp[i] = self.epoch;
+            self.state[i] = f();
+        }
+        self.state[i]
+    }
 }
 
 /// Per-vertex arrays reused by every cut (epoch-stamped: never cleared). Owned by the mesh
@@ -203,6 +246,16 @@ impl<'a> StateClassifier<'a> {
         }
     }
 
+    /// The cutting polygon.
+    pub fn polygon(&self) -> &'a CutPolygon {
+        self.polygon
+    }
+
+    /// The snapping tolerance.
+    pub fn snap(&self) -> Tolerance {
+        self.snap
+    }
+
     /// [`vertex`](Self::vertex) for vertex `v` of a pool, reading its scale only when the
     /// vertex is close enough to the plane for it to matter.
     #[inline(always)]
@@ -229,15 +282,34 @@ impl<'a> StateClassifier<'a> {
     /// tet's vertices are scattered in memory).
     #[inline]
     pub fn tet(&self, positions: &[DVec3], scales: &[f64], tet: &Tet) -> [u8; 4] {
+        self.tet_with(positions, tet, |v| {
+            self.vertex(positions[v.idx()], scales[v.idx()])
+        })
+    }
+
+    /// [`tet`](Self::tet), asking `near` for the state of each vertex close enough to the
+    /// plane to need more than one dot product (a caller may cache those).
+    #[inline]
+    pub fn tet_with(
+        &self,
+        positions: &[DVec3],
+        tet: &Tet,
+        mut near: impl FnMut(VertexId) -> u8,
+    ) -> [u8; 4] {
         let d = tet.map(|v| self.normal.dot(positions[v.idx()]) - self.offset);
-        let near = (d[0].abs() <= self.far)
-            | (d[1].abs() <= self.far)
-            | (d[2].abs() <= self.far)
-            | (d[3].abs() <= self.far);
-        if near {
-            return tet.map(|v| self.pool_vertex(positions, scales, v));
+        let close = d.map(|x| x.abs() <= self.far);
+        if !(close[0] | close[1] | close[2] | close[3]) {
+            return d.map(|x| if x > 0.0 { POS } else { NEG });
         }
-        d.map(|x| if x > 0.0 { POS } else { NEG })
+        let mut out = [0u8; 4];
+        for j in 0..4 {
+            out[j] = if !close[j] {
+                if d[j] > 0.0 { POS } else { NEG }
+            } else {
+                near(tet[j])
+            };
+        }
+        out
     }
 }
 
@@ -299,6 +371,7 @@ pub struct CutSession<'a> {
     pub(crate) faces: Vec<FaceRec>,
     /// Records not yet classified / allocated.
     edges_classified: usize,
+    faces_computed: usize,
     edges_allocated: usize,
     faces_allocated: usize,
 }
@@ -325,6 +398,7 @@ impl<'a> CutSession<'a> {
             edges: Vec::new(),
             faces: Vec::new(),
             edges_classified: 0,
+            faces_computed: 0,
             edges_allocated: 0,
             faces_allocated: 0,
         }
@@ -381,7 +455,7 @@ impl<'a> CutSession<'a> {
         let mut r = *self.head(v[0], true);
         while r != NONE {
             let f = &self.faces[r as usize];
-            if f.v == v {
+            if f.v == v && !f.dead {
                 return r;
             }
             r = f.next;
@@ -396,8 +470,20 @@ impl<'a> CutSession<'a> {
             ends,
             w: [0.0; 3],
             id: VertexId::INVALID,
+            dead: false,
         });
         id
+    }
+
+    /// Forgets the face points of faces containing `v`, whose state is about to change
+    /// (the cut leaves it unsnapped): the tets around `v` are then classified again, and
+    /// make new records. Only unallocated records may be forgotten.
+    pub fn forget_vertex(&mut self, v: VertexId) {
+        for f in &mut self.faces[self.faces_allocated..] {
+            if f.v.contains(&v) {
+                f.dead = true;
+            }
+        }
     }
 
     /// Classifies a batch of tets (their states already computed, see [`tet_states`]):
@@ -550,7 +636,7 @@ impl<'a> CutSession<'a> {
     /// C by more than snapped vertices do. The true crossing is always allowed (its face
     /// point is off the plane only as much as the inside end, a snapped vertex, is).
     fn compute_new_faces(&mut self, positions: &[DVec3], scales: &[f64], parallel: bool) {
-        let start = self.faces_allocated;
+        let start = self.faces_computed;
         let computed: Vec<[f64; 3]> = {
             let this = &*self;
             let work = |f: &FaceRec| {
@@ -599,6 +685,7 @@ impl<'a> CutSession<'a> {
         for (f, w) in self.faces[start..].iter_mut().zip(computed) {
             f.w = w;
         }
+        self.faces_computed = self.faces.len();
     }
 
     /// Allocates ids for the cut points and face points recorded since the last call, in
@@ -614,6 +701,7 @@ impl<'a> CutSession<'a> {
             (e.lo, e.hi)
         });
         let mut faces: Vec<u32> = (self.faces_allocated..self.faces.len())
+            .filter(|&r| !self.faces[r].dead)
             .map(|r| r as u32)
             .collect();
         faces.sort_unstable_by_key(|&r| self.faces[r as usize].v);
@@ -648,12 +736,39 @@ impl<'a> CutSession<'a> {
     #[inline]
     pub(crate) fn edge_points(&self, r: u32) -> (VertexId, VertexId) {
         let e = &self.edges[r as usize];
-        (e.plus, e.minus)
+        if e.plus.is_valid() {
+            (e.plus, e.minus)
+        } else {
+            (
+                VertexId(PROVISIONAL | (2 * r)),
+                VertexId(PROVISIONAL | (2 * r + 1)),
+            )
+        }
     }
 
     #[inline]
     pub(crate) fn face_point(&self, r: u32) -> VertexId {
-        self.faces[r as usize].id
+        let f = &self.faces[r as usize];
+        if f.id.is_valid() {
+            f.id
+        } else {
+            VertexId(PROVISIONAL | PROVISIONAL_FACE | r)
+        }
+    }
+
+    /// The allocated id of a vertex id handed out before allocation (ids below
+    /// [`PROVISIONAL`] are returned as they are).
+    #[inline]
+    pub(crate) fn resolve(&self, v: VertexId) -> VertexId {
+        if v.0 & PROVISIONAL == 0 {
+            return v;
+        }
+        if v.0 & PROVISIONAL_FACE != 0 {
+            return self.faces[(v.0 & !(PROVISIONAL | PROVISIONAL_FACE)) as usize].id;
+        }
+        let r = (v.0 & !PROVISIONAL) as usize;
+        let e = &self.edges[r / 2];
+        if r % 2 == 0 { e.plus } else { e.minus }
     }
 
     /// Number of edges the plane crosses among those classified so far, and how many are

@@ -2,8 +2,10 @@
 //! acceleration structure kept between cuts.
 
 use super::bielser::Bielser17Nodes;
-use super::bvh::TetBvh;
-use super::classify::{CutScratch, CutSession, VertexOrigin, origin_position};
+use super::bvh::{QueryOptions, TetBvh};
+use super::classify::{
+    CutScratch, CutSession, NONE, StateCache, TetClass, VertexOrigin, origin_position,
+};
 use super::options::{CutError, CutOptions, Scheme};
 use super::report::{CutResult, CutStats, CutTimes, SplitRecord};
 use super::split::{Children, split_tet};
@@ -47,6 +49,9 @@ pub struct Cutter {
     scales: Vec<f64>,
     bvh: TetBvh,
     scratch: CutScratch,
+    state_cache: StateCache,
+    /// Dense index of each snapped vertex during a cut (valid for those only).
+    snapped_slot: Vec<u32>,
     options: CutOptions,
     cuts_applied: u32,
     build_time: Duration,
@@ -85,6 +90,8 @@ impl Cutter {
             scales,
             bvh,
             scratch: CutScratch::new(),
+            state_cache: StateCache::default(),
+            snapped_slot: Vec::new(),
             options,
             cuts_applied,
             build_time,
@@ -141,8 +148,9 @@ impl Cutter {
     /// vertices the cut passes through are duplicated where the sides separate.
     ///
     /// The cut is planned in full before the mesh changes. A snapped vertex that copies
-    /// cannot separate (a "pinched" one, see [`super::unglue`]) is left unsnapped and the
-    /// plan redone, which keeps the result a manifold mesh.
+    /// cannot separate (a "pinched" one, see [`super::unglue`]) is left unsnapped: only the
+    /// tets around it are classified and split again, and the plan checked again. This
+    /// keeps the result a manifold mesh.
     pub fn cut(&mut self, polygon: &CutPolygon) -> Result<CutResult, CutError> {
         let opts = self.options;
         let start = Instant::now();
@@ -159,61 +167,206 @@ impl Cutter {
             self.mesh.tets(),
             polygon,
             opts.snap,
-            n_tets / 32 >= opts.parallel_threshold,
+            QueryOptions {
+                parallel: n_tets / 32 >= opts.parallel_threshold,
+                cache: &mut self.state_cache,
+            },
         );
         let cand = &found.tets;
         let mut states = found.states.clone();
         let tets: Vec<Tet> = cand.iter().map(|t| self.mesh.tet(*t)).collect();
         times.query = start.elapsed().as_secs_f64();
 
+        // Step 2a: classify every edge and face once.
+        let t = Instant::now();
+        let positions = self.mesh.positions();
+        let mut session = CutSession::new(
+            polygon,
+            opts.snap,
+            opts.face_point_margin,
+            &mut self.scratch,
+            n_vertices,
+        );
+        let mut classes =
+            session.classify(positions, &self.scales, &tets, &states, par(tets.len()));
+        times.classify += t.elapsed().as_secs_f64();
+
+        // Step 2b planned: children (with provisional ids for new points), and the copies
+        // of snapped vertices; vertices that copies cannot separate are unsnapped and their
+        // tets planned again.
+        let t = Instant::now();
+        let bielser = match opts.scheme {
+            Scheme::Lut => None,
+            Scheme::Bielser17 => Some(Bielser17Nodes::allocate(
+                &session,
+                &tets,
+                &classes,
+                VertexId::from_usize(n_vertices),
+            )),
+        };
+        let split_one = |session: &CutSession<'_>, k: usize, class: &TetClass| -> Children {
+            let mut c = Children::new();
+            match &bielser {
+                None => split_tet(session, &tets[k], class, &mut c),
+                Some((nodes, _)) => nodes.split(&tets[k], class, &mut c),
+            };
+            c
+        };
+        let split_at: Vec<usize> = (0..tets.len()).filter(|&k| classes[k].is_split()).collect();
+        let computed: Vec<Children> = if par(split_at.len()) {
+            use rayon::prelude::*;
+            split_at
+                .par_iter()
+                .map(|&k| split_one(&session, k, &classes[k]))
+                .collect()
+        } else {
+            split_at
+                .iter()
+                .map(|&k| split_one(&session, k, &classes[k]))
+                .collect()
+        };
+        // children[child_of[k]] are candidate k's children (NONE: not split).
+        let mut child_of = vec![NONE; tets.len()];
+        for (i, &k) in split_at.iter().enumerate() {
+            child_of[k] = i as u32;
+        }
+        let mut children = computed;
+        times.split += t.elapsed().as_secs_f64();
+
         let mut unsnapped: Vec<VertexId> = Vec::new();
         let mut passes = 0;
-        let plan = loop {
+        // Vertices whose stars changed since the last pass (None: all).
+        let mut redo: Option<Vec<VertexId>> = None;
+        let mut copies = Copies::default();
+        let snapped = loop {
             passes += 1;
-            let plan = self.plan(polygon, cand, &tets, &states, &mut times, par)?;
-            if plan.copies.pinched.is_empty() {
-                break plan;
+            let t = Instant::now();
+            let (star, snapped) =
+                Self::star_of_snapped(&self.mesh, polygon, &tets, &classes, &children, &child_of);
+            if opts.scheme == Scheme::Lut {
+                if self.snapped_slot.len() < self.mesh.nb_vertices() {
+                    self.snapped_slot.resize(self.mesh.nb_vertices(), 0);
+                }
+                for (i, v) in snapped.iter().enumerate() {
+                    self.snapped_slot[v.idx()] = i as u32;
+                }
+                let slots = &self.snapped_slot;
+                let update = plan_copies(&snapped, &star, redo.as_deref(), |v| {
+                    slots[v.idx()] as usize
+                });
+                copies = match &redo {
+                    None => update,
+                    Some(r) => std::mem::take(&mut copies).merge(r, update),
+                };
             }
-            for &v in &plan.copies.pinched {
-                let state = self.unsnapped_state(polygon, v, &tets);
-                for (st, tet) in states.iter_mut().zip(&tets) {
-                    for (s, x) in st.iter_mut().zip(tet) {
-                        if *x == v {
-                            *s = state;
-                        }
+            times.unglue += t.elapsed().as_secs_f64();
+            if copies.pinched.is_empty() {
+                break snapped;
+            }
+            let t = Instant::now();
+            let mut affected: Vec<usize> = Vec::new();
+            let pinched = std::mem::take(&mut copies.pinched);
+            for &u in &pinched {
+                let state = Self::unsnapped_state(&self.mesh, polygon, u, &tets);
+                session.forget_vertex(u);
+                for (k, tet) in tets.iter().enumerate() {
+                    if let Some(j) = tet.iter().position(|&x| x == u) {
+                        states[k][j] = state;
+                        affected.push(k);
                     }
                 }
             }
-            unsnapped.extend_from_slice(&plan.copies.pinched);
+            affected.sort_unstable();
+            affected.dedup();
+            unsnapped.extend_from_slice(&pinched);
+            let sub_tets: Vec<Tet> = affected.iter().map(|&k| tets[k]).collect();
+            let sub_states: Vec<[u8; 4]> = affected.iter().map(|&k| states[k]).collect();
+            let sub = session.classify(positions, &self.scales, &sub_tets, &sub_states, false);
+            let mut changed: Vec<VertexId> = pinched;
+            for (&k, class) in affected.iter().zip(sub) {
+                classes[k] = class;
+                child_of[k] = if class.is_split() {
+                    children.push(split_one(&session, k, &classes[k]));
+                    (children.len() - 1) as u32
+                } else {
+                    NONE
+                };
+                changed.extend(tets[k].iter().copied());
+            }
+            changed.sort_unstable();
+            changed.dedup();
+            redo = Some(changed);
+            times.classify += t.elapsed().as_secs_f64();
         };
 
-        // Commit: new vertices, children, copies.
+        // Ids for the new points, in canonical order.
         let t = Instant::now();
-        let Plan {
-            mut origins,
-            children,
-            split_at,
-            copies,
-            snapped,
-            edges_crossed,
-            edges_cut,
-        } = plan;
+        let first = VertexId::from_usize(n_vertices);
+        let mut origins = match &bielser {
+            None => session.allocate(first),
+            Some((_, o)) => o.clone(),
+        };
+        let live = || {
+            child_of
+                .iter()
+                .filter(|&&i| i != NONE)
+                .map(|&i| &children[i as usize])
+        };
+        let split_count = live().count();
+        let created_count: usize = live().map(|c| c.len).sum();
+        if n_vertices + origins.len() + copies.groups.len() > MAX_ELEMENTS
+            || n_tets + created_count > MAX_ELEMENTS
+        {
+            return Err(CutError::TooLarge {
+                max: MAX_ELEMENTS as u32,
+            });
+        }
+        let (edges_crossed, edges_cut) = session.edge_counts();
+        // Commit: new vertices, children, copies.
+        let mut first_appended = vec![0u32; tets.len()];
+        let mut next = n_tets as u32;
+        for (k, &i) in child_of.iter().enumerate() {
+            if i != NONE {
+                first_appended[k] = next;
+                next += children[i as usize].len as u32 - 1;
+            }
+        }
+        let slot = |virtual_slot: TetId| -> TetId {
+            let (k, c) = (virtual_slot.idx() / 32, virtual_slot.idx() % 32);
+            if c == 0 {
+                cand[k]
+            } else {
+                TetId(first_appended[k] + c as u32 - 1)
+            }
+        };
+        for &i in child_of.iter().filter(|&&i| i != NONE) {
+            let c = &mut children[i as usize];
+            for t in c.tets[..c.len].iter_mut() {
+                *t = t.map(|v| session.resolve(v));
+            }
+        }
+        drop(session);
+        times.classify += t.elapsed().as_secs_f64();
+
+        let t = Instant::now();
         add_vertices(&mut self.mesh, &mut self.scales, &origins);
         self.cuts_applied += 1;
         let mark = self.cuts_applied as f64;
         let mut by_case = [0usize; 10];
-        let mut created = 0usize;
-        let mut appended_parents: Vec<u32> = Vec::new();
-        let mut records: Vec<SplitRecord> = Vec::with_capacity(split_at.len());
-        let max_children = children.iter().map(|c| c.len).sum::<usize>();
-        self.bvh.reserve_tets(n_tets + max_children);
-        for (ch, &k) in children.iter().zip(&split_at) {
+        let mut appended_parents: Vec<u32> = Vec::with_capacity(created_count);
+        let mut records: Vec<SplitRecord> = Vec::with_capacity(split_count);
+        self.bvh.reserve_tets(n_tets + created_count);
+        for (k, &i) in child_of.iter().enumerate() {
+            if i == NONE {
+                continue;
+            }
+            let ch = &children[i as usize];
             let parent = cand[k];
             by_case[ch.case as usize] += 1;
-            created += ch.len;
             let all = self.mesh.tets_mut();
             all[parent.idx()] = ch.tets[0];
             let first_extra = all.len();
+            debug_assert_eq!(first_extra as u32, first_appended[k]);
             all.extend_from_slice(&ch.tets[1..ch.len]);
             records.push(SplitRecord {
                 parent,
@@ -228,8 +381,8 @@ impl Cutter {
             );
         }
         if let Some(col) = self.mesh.cell_data.get_mut(CUT_COLUMN) {
-            for &k in &split_at {
-                col.values[cand[k].idx()] = mark;
+            for r in &records {
+                col.values[r.parent.idx()] = mark;
             }
         }
         self.mesh.cell_data.push_copies(&appended_parents);
@@ -243,8 +396,8 @@ impl Cutter {
             self.mesh.point_data.push_copy(v.idx());
             origins.push(VertexOrigin::Copy { of: v });
             let all = self.mesh.tets_mut();
-            for t in members {
-                for x in all[t.idx()].iter_mut() {
+            for m in members {
+                for x in all[slot(m).idx()].iter_mut() {
                     if *x == v {
                         *x = copy;
                     }
@@ -272,9 +425,9 @@ impl Cutter {
             scheme: opts.scheme,
             tets_tested: found.tested,
             tets_candidate: cand.len(),
-            tets_cut: split_at.len(),
+            tets_cut: split_count,
             tets_cut_by_case: by_case,
-            tets_created: created,
+            tets_created: created_count,
             vertices_added: origins.len(),
             cut_points,
             face_points,
@@ -291,124 +444,58 @@ impl Cutter {
         };
         Ok(CutResult {
             stats,
-            first_new_vertex: VertexId::from_usize(n_vertices),
+            first_new_vertex: first,
             origins,
             splits: records,
         })
     }
 
-    /// Steps 2a and 2b without touching the mesh: classification, new vertices, children,
-    /// and the copies of snapped vertices (with the tets' final slots).
-    fn plan(
-        &mut self,
+    /// The tets around the vertices snapped onto the cut, with their planned sides, and
+    /// those vertices (sorted). Tets are named by virtual slots: candidate `k`'s child `c`
+    /// is `32 k + c` (child 0 of a split tet, and an unsplit tet, take the tet's slot).
+    fn star_of_snapped(
+        mesh: &TetMesh,
         polygon: &CutPolygon,
-        cand: &[TetId],
         tets: &[Tet],
-        states: &[[u8; 4]],
-        times: &mut CutTimes,
-        par: impl Fn(usize) -> bool,
-    ) -> Result<Plan, CutError> {
-        let opts = self.options;
-        let n_vertices = self.mesh.nb_vertices();
-        let n_tets = self.mesh.nb_tets();
-        let t = Instant::now();
-        let mut session = CutSession::new(
-            polygon,
-            opts.snap,
-            opts.face_point_margin,
-            &mut self.scratch,
-            n_vertices,
-        );
-        let classes = session.classify(
-            self.mesh.positions(),
-            &self.scales,
-            tets,
-            states,
-            par(tets.len()),
-        );
-        let first = VertexId::from_usize(n_vertices);
-        let (bielser, origins) = match opts.scheme {
-            Scheme::Lut => (None, session.allocate(first)),
-            Scheme::Bielser17 => {
-                let (nodes, o) = Bielser17Nodes::allocate(&session, tets, &classes, first);
-                (Some(nodes), o)
-            }
-        };
-        let split_at: Vec<usize> = (0..tets.len()).filter(|&k| classes[k].is_split()).collect();
-        let max_children = if bielser.is_some() { 17 } else { 13 };
-        if n_vertices + origins.len() + 4 * (tets.len() + split_at.len() * max_children)
-            > MAX_ELEMENTS
-            || n_tets + split_at.len() * max_children > MAX_ELEMENTS
-        {
-            return Err(CutError::TooLarge {
-                max: MAX_ELEMENTS as u32,
-            });
-        }
-        let (edges_crossed, edges_cut) = session.edge_counts();
-        times.classify += t.elapsed().as_secs_f64();
-
-        let t = Instant::now();
-        let split_one = |k: usize| -> Children {
-            let mut c = Children::new();
-            match &bielser {
-                None => split_tet(&session, &tets[k], &classes[k], &mut c),
-                Some(nodes) => nodes.split(&tets[k], &classes[k], &mut c),
-            };
-            c
-        };
-        let children: Vec<Children> = if par(split_at.len()) {
-            use rayon::prelude::*;
-            split_at.par_iter().map(|&k| split_one(k)).collect()
-        } else {
-            split_at.iter().map(|&k| split_one(k)).collect()
-        };
-        drop(session);
-        times.split += t.elapsed().as_secs_f64();
-
-        // The tets around snapped vertices, with the slots they will have.
-        let t = Instant::now();
+        classes: &[TetClass],
+        children: &[Children],
+        child_of: &[u32],
+    ) -> (Vec<StarEntry>, Vec<VertexId>) {
         let mut snapped: Vec<VertexId> = Vec::new();
         let mut star: Vec<StarEntry> = Vec::new();
-        let mut next_slot = n_tets;
-        let mut split_iter = split_at.iter().zip(&children).peekable();
         for (k, c) in classes.iter().enumerate() {
-            let split = matches!(split_iter.peek(), Some((i, _)) if **i == k);
-            if split {
-                let (_, ch) = split_iter.next().expect("peeked");
-                let parent = cand[k];
-                for i in 0..ch.len {
-                    let slot = if i == 0 {
-                        parent
-                    } else {
-                        next_slot += 1;
-                        TetId::from_usize(next_slot - 1)
-                    };
-                    let on = ch.on_cut[i];
-                    for j in 0..4 {
-                        if on & (1 << j) != 0 {
-                            star.push(StarEntry {
-                                vertex: ch.tets[i][j],
-                                tet: slot,
-                                verts: ch.tets[i],
-                                side: ch.sides[i],
-                            });
+            if !c.touches_cut() {
+                continue;
+            }
+            for (j, &s) in c.states.iter().enumerate() {
+                if s == ON {
+                    snapped.push(tets[k][j]);
+                }
+            }
+            match child_of[k] {
+                i if i != NONE => {
+                    let ch = &children[i as usize];
+                    for i in 0..ch.len {
+                        let on = ch.on_cut[i];
+                        for j in 0..4 {
+                            if on & (1 << j) != 0 {
+                                star.push(StarEntry {
+                                    vertex: ch.tets[i][j],
+                                    tet: TetId((32 * k + i) as u32),
+                                    verts: ch.tets[i],
+                                    side: ch.sides[i],
+                                });
+                            }
                         }
                     }
                 }
-            }
-            if c.touches_cut() {
-                for (j, &s) in c.states.iter().enumerate() {
-                    if s == ON {
-                        snapped.push(tets[k][j]);
-                    }
-                }
-                if !split && opts.scheme == Scheme::Lut {
-                    let side = self.unsplit_side(polygon, &tets[k], &c.states);
+                _ => {
+                    let side = Self::unsplit_side(mesh, polygon, &tets[k], &c.states);
                     for (j, &s) in c.states.iter().enumerate() {
                         if s == ON {
                             star.push(StarEntry {
                                 vertex: tets[k][j],
-                                tet: cand[k],
+                                tet: TetId((32 * k) as u32),
                                 verts: tets[k],
                                 side,
                             });
@@ -419,28 +506,15 @@ impl Cutter {
         }
         snapped.sort_unstable();
         snapped.dedup();
-        let copies = match opts.scheme {
-            Scheme::Lut => plan_copies(&snapped, &star),
-            Scheme::Bielser17 => Copies::default(),
-        };
-        times.unglue += t.elapsed().as_secs_f64();
-        Ok(Plan {
-            origins,
-            children,
-            split_at,
-            copies,
-            snapped,
-            edges_crossed,
-            edges_cut,
-        })
+        (star, snapped)
     }
 
     /// The state of a snapped vertex left unsnapped: its exact side; for a vertex exactly
     /// on the plane, the side of its neighbours off the plane when they are all on one
     /// side (then no edge from it crosses the plane at it, which would make a cut point
     /// coincide with it), positive otherwise.
-    fn unsnapped_state(&self, polygon: &CutPolygon, v: VertexId, tets: &[Tet]) -> u8 {
-        match polygon.side(self.mesh.position(v)) {
+    fn unsnapped_state(mesh: &TetMesh, polygon: &CutPolygon, v: VertexId, tets: &[Tet]) -> u8 {
+        match polygon.side(mesh.position(v)) {
             Sign::Negative => return NEG,
             Sign::Positive => return POS,
             Sign::Zero => {}
@@ -448,7 +522,7 @@ impl Cutter {
         let (mut pos, mut neg) = (false, false);
         for t in tets.iter().filter(|t| t.contains(&v)) {
             for &x in t {
-                match polygon.side(self.mesh.position(x)) {
+                match polygon.side(mesh.position(x)) {
                     Sign::Positive => pos = true,
                     Sign::Negative => neg = true,
                     Sign::Zero => {}
@@ -461,7 +535,7 @@ impl Cutter {
     /// The side of a tet the tables leave whole but that touches the cut at a vertex: the
     /// side of its other vertices; a tet with all four vertices snapped (a sliver lying in
     /// the cut) goes to the side of its centroid.
-    fn unsplit_side(&self, polygon: &CutPolygon, tet: &Tet, states: &[u8; 4]) -> Side {
+    fn unsplit_side(mesh: &TetMesh, polygon: &CutPolygon, tet: &Tet, states: &[u8; 4]) -> Side {
         if states.contains(&POS) {
             debug_assert!(
                 !states.contains(&NEG),
@@ -472,7 +546,7 @@ impl Cutter {
         if states.contains(&NEG) {
             return Side::Negative;
         }
-        let c: DVec3 = tet.iter().map(|v| self.mesh.position(*v)).sum::<DVec3>() * 0.25;
+        let c: DVec3 = tet.iter().map(|v| mesh.position(*v)).sum::<DVec3>() * 0.25;
         if polygon.signed_distance(c) < 0.0 {
             Side::Negative
         } else {
@@ -507,19 +581,6 @@ fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrig
         mesh.push_vertex(p);
         scales.push(scale);
     }
-}
-
-/// A cut planned in full, before the mesh changes.
-struct Plan {
-    origins: Vec<VertexOrigin>,
-    /// Children of each split candidate, in candidate order.
-    children: Vec<Children>,
-    /// Candidates (indices) that are split.
-    split_at: Vec<usize>,
-    copies: Copies,
-    snapped: Vec<VertexId>,
-    edges_crossed: usize,
-    edges_cut: usize,
 }
 
 /// Cuts `mesh` with `polygon` once (building the acceleration structure, timed in
