@@ -23,8 +23,9 @@
 //!
 //! ## Layers (dependencies point down only)
 //!
-//! `geom` (predicates, planes) ← `mesh` (TetMesh, tables, adjacency, validation) ← `io`.
-//! See ARCHITECTURE.md.
+//! `geom` (predicates, planes, cutting polygons) ← `mesh` (TetMesh, tables, adjacency,
+//! validation) ← `io`, `cut` (classification, split tables, separation). See
+//! ARCHITECTURE.md.
 
 pub mod cut;
 pub mod geom;

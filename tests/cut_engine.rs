@@ -329,3 +329,77 @@ fn bad_input_is_refused_with_a_reason() {
     assert!(m == before, "a refused cut leaves the mesh alone");
     assert!(Cutter::new(before, CutOptions::DEFAULT.with_face_point_margin(-1.0)).is_err());
 }
+
+#[test]
+fn batches_and_order_do_not_change_the_points() {
+    // The core the MT builds on: tets classified in one batch or several, in any order,
+    // share one cut point per edge and one face point per face, get the same canonical
+    // ids and the same children.
+    use mtcut::cut::classify::is_candidate;
+    use mtcut::cut::split::{Children, split_tet};
+    use mtcut::cut::{CutScratch, CutSession};
+    let input = mesh("pinion");
+    let scales = mtcut::cut::vertex_scales(input);
+    let max_scale = scales.iter().fold(0.0f64, |a, &b| a.max(b));
+    let mut rng = Rng(31337);
+    let polygon = random_polygon(input, Kind::Partial, &mut rng);
+    let opts = CutOptions::DEFAULT;
+    let run = |order: &[usize], batches: usize| {
+        let mut scratch = CutScratch::new();
+        let mut s = CutSession::new(
+            &polygon,
+            opts.snap,
+            opts.face_point_margin,
+            &mut scratch,
+            input.nb_vertices(),
+        );
+        let classifier = s.classifier(&input.bbox(), max_scale);
+        let tets: Vec<_> = order.iter().map(|&k| input.tets()[k]).collect();
+        let states: Vec<[u8; 4]> = tets
+            .iter()
+            .map(|t| classifier.tet(input.positions(), &scales, t))
+            .collect();
+        let mut classes = Vec::new();
+        let chunk = tets.len().div_ceil(batches);
+        for (ts, st) in tets.chunks(chunk).zip(states.chunks(chunk)) {
+            classes.extend(s.classify(input.positions(), &scales, ts, st, false));
+        }
+        let origins = s.allocate(mtcut::mesh::VertexId::from_usize(input.nb_vertices()));
+        let mut children: Vec<(usize, Vec<[u32; 4]>)> = Vec::new();
+        for ((&k, t), c) in order.iter().zip(&tets).zip(&classes) {
+            let mut ch = Children::new();
+            if split_tet(&s, t, c, &mut ch) {
+                let mut v: Vec<[u32; 4]> =
+                    ch.tets[..ch.len].iter().map(|x| x.map(|y| y.0)).collect();
+                v.sort_unstable();
+                children.push((k, v));
+            }
+        }
+        children.sort_unstable();
+        (origins, children)
+    };
+    let all: Vec<usize> = (0..input.nb_tets())
+        .filter(|&k| {
+            let t = input.tets()[k];
+            let st = t.map(|v| {
+                mtcut::cut::classify::vertex_state(
+                    &polygon,
+                    opts.snap,
+                    input.position(v),
+                    scales[v.idx()],
+                )
+            });
+            is_candidate(st)
+        })
+        .collect();
+    assert!(all.len() > 50);
+    let (o1, c1) = run(&all, 1);
+    let mut shuffled = all.clone();
+    for i in (1..shuffled.len()).rev() {
+        shuffled.swap(i, rng.below(i + 1));
+    }
+    let (o2, c2) = run(&shuffled, 5);
+    assert_eq!(o1, o2, "new points differ");
+    assert_eq!(c1, c2, "children differ");
+    assert!(!c1.is_empty());
+}

@@ -12,7 +12,7 @@ use crate::geom::{Aabb, CutPolygon, DVec3, Tolerance};
 use crate::mesh::{Tet, TetId};
 
 /// Tets per leaf at build time.
-const LEAF_SIZE: usize = 8;
+const LEAF_SIZE: usize = 4;
 
 #[derive(Clone, Copy, Debug)]
 struct Node {

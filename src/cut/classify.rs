@@ -10,7 +10,10 @@
 //! between cuts.
 //!
 //! Classification is a pure function of positions and vertex scales: asking again gives
-//! the same answer, whichever tet asks first.
+//! the same answer, whichever tet asks first. Until [`CutSession::allocate`] gives the new
+//! points their ids (in canonical order), splitting uses provisional ids that
+//! [`CutSession::resolve`] maps to the final ones; so the tets around a vertex can be
+//! classified again ([`CutSession::forget_vertex`]) before anything is committed.
 
 use super::tables::{NEG, ON, POS, config_index, face_points, is_crossed};
 use crate::geom::{CutPolygon, DVec3, Sign, Tolerance};
@@ -486,7 +489,8 @@ impl<'a> CutSession<'a> {
         }
     }
 
-    /// Classifies a batch of tets (their states already computed, see [`tet_states`]):
+    /// Classifies a batch of tets (their states already computed, see
+    /// [`StateClassifier::tet`]):
     /// edges first (once each, whichever batch meets them first), then faces. Returns one
     /// [`TetClass`] per tet. The pool must hold every vertex the tets use.
     pub fn classify(
@@ -623,8 +627,8 @@ impl<'a> CutSession<'a> {
         w
     }
 
-    /// Face points of the faces recorded since the last allocation (see the module docs
-    /// of [`super::options::CutOptions::face_point_margin`]).
+    /// Face points of the faces recorded since the last call (see also
+    /// [`super::options::CutOptions::face_point_margin`]).
     ///
     /// The face point lies on the segment from the face's section end in C to a point of
     /// its uncut edge: where C's contour crosses the segment, kept `face_margin` from its
@@ -757,9 +761,9 @@ impl<'a> CutSession<'a> {
     }
 
     /// The allocated id of a vertex id handed out before allocation (ids below
-    /// [`PROVISIONAL`] are returned as they are).
+    /// 2³¹, the provisional range, are returned as they are).
     #[inline]
-    pub(crate) fn resolve(&self, v: VertexId) -> VertexId {
+    pub fn resolve(&self, v: VertexId) -> VertexId {
         if v.0 & PROVISIONAL == 0 {
             return v;
         }

@@ -20,9 +20,9 @@ use std::time::{Duration, Instant};
 /// created the tet (within the meshes this library cut), 0 for tets not created by a cut.
 pub const CUT_COLUMN: &str = "mtcut:cut";
 
-/// The largest number of vertices or tets a mesh may reach (ids are `u32`, `u32::MAX`
-/// meaning "none").
-const MAX_ELEMENTS: usize = u32::MAX as usize - 1;
+/// The largest number of vertices or tets a mesh may reach while it is cut: ids are `u32`,
+/// and a cut in progress uses the ids from 2³¹ on as provisional ids for its new points.
+const MAX_ELEMENTS: usize = (1 << 31) - 1;
 
 /// The scale of each vertex: the length of its longest incident edge (0 for an unused
 /// vertex). Snapping distances are relative to it.
