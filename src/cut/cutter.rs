@@ -363,11 +363,12 @@ impl Cutter {
             let ch = &children[i as usize];
             let parent = cand[k];
             by_case[ch.case as usize] += 1;
-            let all = self.mesh.tets_mut();
-            all[parent.idx()] = ch.tets[0];
-            let first_extra = all.len();
+            self.mesh.tets_mut()[parent.idx()] = ch.tets[0];
+            let first_extra = self.mesh.nb_tets();
             debug_assert_eq!(first_extra as u32, first_appended[k]);
-            all.extend_from_slice(&ch.tets[1..ch.len]);
+            for &t in &ch.tets[1..ch.len] {
+                self.mesh.push_tet(t);
+            }
             records.push(SplitRecord {
                 parent,
                 first_appended: TetId::from_usize(first_extra),
@@ -558,8 +559,13 @@ impl Cutter {
 /// Appends the vertices of `origins` to `mesh` (positions, interpolated point data) and
 /// their scales to `scales`.
 fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrigin]) {
+    // New vertices are combinations of older ones only: positions can be computed first.
+    let new: Vec<DVec3> = origins
+        .iter()
+        .map(|o| origin_position(mesh.positions(), o))
+        .collect();
+    mesh.positions_vec_mut().extend(new);
     for o in origins {
-        let p = origin_position(mesh.positions(), o);
         let scale = match *o {
             VertexOrigin::Edge { a, b, t, .. } => {
                 mesh.point_data.push_lerp(a.idx(), b.idx(), t);
@@ -578,7 +584,6 @@ fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrig
                 scales[of.idx()]
             }
         };
-        mesh.push_vertex(p);
         scales.push(scale);
     }
 }
