@@ -24,10 +24,15 @@
 //! ## Layers (dependencies point down only)
 //!
 //! `geom` (predicates, planes, cutting polygons) ← `mesh` (TetMesh, tables, adjacency,
-//! validation) ← `io`, `cut` (classification, split tables, separation). See
-//! ARCHITECTURE.md.
+//! validation) ← `io`, `cut` (classification, split tables, separation); [`ffi`], the C ABI,
+//! sits on top and is the only module allowed `unsafe` code. See ARCHITECTURE.md.
+
+#![deny(unsafe_code)]
 
 pub mod cut;
+// The C ABI dereferences the caller's pointers: that is its whole job, and only its job.
+#[allow(unsafe_code)]
+pub mod ffi;
 pub mod geom;
 pub mod io;
 pub mod mesh;

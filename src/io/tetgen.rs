@@ -38,9 +38,10 @@ fn read_text(path: &Path) -> Result<String, IoError> {
     })
 }
 
-/// Parses the next `count` whitespace-separated numbers of a line.
+/// Parses the next `count` whitespace-separated numbers of a line. Missing values on the
+/// file's last line mean the file was cut short, and the message says so.
 fn numbers<T: std::str::FromStr>(
-    path: &Path,
+    (path, last_line): (&Path, usize),
     line: usize,
     fields: &mut std::str::SplitAsciiWhitespace<'_>,
     count: usize,
@@ -49,7 +50,16 @@ fn numbers<T: std::str::FromStr>(
     (0..count)
         .map(|k| {
             let f = fields.next().ok_or_else(|| {
-                IoError::at_line(path, line, format!("expected {count} {what}, found {k}"))
+                let cut = if line == last_line {
+                    " (the file ends here: truncated)"
+                } else {
+                    ""
+                };
+                IoError::at_line(
+                    path,
+                    line,
+                    format!("expected {count} {what} values, found {k}{cut}"),
+                )
             })?;
             f.parse::<T>()
                 .map_err(|_| IoError::at_line(path, line, format!("'{f}' is not a valid {what}")))
@@ -73,12 +83,15 @@ pub fn parse_tetgen(
     path: &Path,
 ) -> Result<(TetMesh, ImportReport), IoError> {
     let (node_path, ele_path) = pair(path);
+    let last_content_line = |text: &str| content_lines(text).last().map_or(0, |(l, _)| l);
+    let node_file = (node_path.as_path(), last_content_line(node_text));
+    let ele_file = (ele_path.as_path(), last_content_line(ele_text));
     let mut lines = content_lines(node_text);
     let (hl, header) = lines
         .next()
         .ok_or_else(|| IoError::malformed(&node_path, "empty file: no header line"))?;
     let mut f = header.split_ascii_whitespace();
-    let h: Vec<usize> = numbers(&node_path, hl, &mut f, 1, "count")?;
+    let h: Vec<usize> = numbers(node_file, hl, &mut f, 1, "count")?;
     let n = h[0];
     let rest: Vec<usize> = f
         .map(|x| {
@@ -96,9 +109,20 @@ pub fn parse_tetgen(
             format!("dimension {dim}, expected 3"),
         ));
     }
-    let mut positions = Vec::with_capacity(n);
-    let mut attrs = vec![Vec::with_capacity(n); n_attr];
-    let mut markers = Vec::with_capacity(if n_marker > 0 { n } else { 0 });
+    // Header counts are checked against the text before anything is allocated: a damaged
+    // header must give a message, not an absurd allocation. A node line has at least 8
+    // characters, an attribute at least 2.
+    if n_attr > node_text.len() / 2 {
+        return Err(IoError::at_line(
+            &node_path,
+            hl,
+            format!("{n_attr} attributes per node: more than the file holds"),
+        ));
+    }
+    let rows = n.min(node_text.len() / 8);
+    let mut positions = Vec::with_capacity(rows);
+    let mut attrs = vec![Vec::with_capacity(rows); n_attr];
+    let mut markers = Vec::with_capacity(if n_marker > 0 { rows } else { 0 });
     let mut base = 0u64;
     for i in 0..n {
         let (ln, l) = lines.next().ok_or_else(|| {
@@ -108,7 +132,7 @@ pub fn parse_tetgen(
             )
         })?;
         let mut f = l.split_ascii_whitespace();
-        let id: Vec<u64> = numbers(&node_path, ln, &mut f, 1, "node id")?;
+        let id: Vec<u64> = numbers(node_file, ln, &mut f, 1, "node id")?;
         if i == 0 {
             base = id[0];
             if base > 1 {
@@ -130,7 +154,7 @@ pub fn parse_tetgen(
                 ),
             ));
         }
-        let xyz: Vec<f64> = numbers(&node_path, ln, &mut f, 3, "coordinate")?;
+        let xyz: Vec<f64> = numbers(node_file, ln, &mut f, 3, "coordinate")?;
         let p = DVec3::new(xyz[0], xyz[1], xyz[2]);
         if !p.is_finite() {
             return Err(IoError::at_line(
@@ -140,12 +164,12 @@ pub fn parse_tetgen(
             ));
         }
         positions.push(p);
-        let a: Vec<f64> = numbers(&node_path, ln, &mut f, n_attr, "attribute")?;
+        let a: Vec<f64> = numbers(node_file, ln, &mut f, n_attr, "attribute")?;
         for (col, v) in attrs.iter_mut().zip(a) {
             col.push(v);
         }
         if n_marker > 0 {
-            markers.push(numbers::<f64>(&node_path, ln, &mut f, 1, "boundary marker")?[0]);
+            markers.push(numbers::<f64>(node_file, ln, &mut f, 1, "boundary marker")?[0]);
         }
     }
 
@@ -154,7 +178,7 @@ pub fn parse_tetgen(
         .next()
         .ok_or_else(|| IoError::malformed(&ele_path, "empty file: no header line"))?;
     let mut f = header.split_ascii_whitespace();
-    let m = numbers::<usize>(&ele_path, hl, &mut f, 1, "count")?[0];
+    let m = numbers::<usize>(ele_file, hl, &mut f, 1, "count")?[0];
     let per: usize = f.next().map_or(Ok(4), |x| {
         x.parse()
             .map_err(|_| IoError::at_line(&ele_path, hl, format!("'{x}' is not a count")))
@@ -170,9 +194,18 @@ pub fn parse_tetgen(
             format!("{per} nodes per tetrahedron; only linear (4-node) tetrahedra are supported"),
         ));
     }
-    let mut tets = Vec::with_capacity(m);
-    let mut eattrs = vec![Vec::with_capacity(m); n_eattr];
-    let mut tet_lines = Vec::with_capacity(m);
+    if n_eattr > ele_text.len() / 2 {
+        return Err(IoError::at_line(
+            &ele_path,
+            hl,
+            format!("{n_eattr} attributes per tetrahedron: more than the file holds"),
+        ));
+    }
+    // A tetrahedron line has at least 10 characters.
+    let rows = m.min(ele_text.len() / 10);
+    let mut tets = Vec::with_capacity(rows);
+    let mut eattrs = vec![Vec::with_capacity(rows); n_eattr];
+    let mut tet_lines = Vec::with_capacity(rows);
     let mut ebase = None;
     for i in 0..m {
         let (ln, l) = lines.next().ok_or_else(|| {
@@ -182,9 +215,9 @@ pub fn parse_tetgen(
             )
         })?;
         let mut f = l.split_ascii_whitespace();
-        let id = numbers::<u64>(&ele_path, ln, &mut f, 1, "element id")?[0];
+        let id = numbers::<u64>(ele_file, ln, &mut f, 1, "element id")?[0];
         ebase.get_or_insert(id);
-        let v: Vec<u64> = numbers(&ele_path, ln, &mut f, 4, "node index")?;
+        let v: Vec<u64> = numbers(ele_file, ln, &mut f, 4, "node index")?;
         let mut tet = [0u32; 4];
         for (k, &x) in v.iter().enumerate() {
             if x < base || x - base >= n as u64 {
@@ -201,7 +234,7 @@ pub fn parse_tetgen(
         }
         tets.push(tet);
         tet_lines.push((ln, id));
-        let a: Vec<f64> = numbers(&ele_path, ln, &mut f, n_eattr, "attribute")?;
+        let a: Vec<f64> = numbers(ele_file, ln, &mut f, n_eattr, "attribute")?;
         for (col, x) in eattrs.iter_mut().zip(a) {
             col.push(x);
         }

@@ -7,16 +7,22 @@
 
 mod adjacency;
 mod attributes;
+mod boundary;
 mod ids;
+mod quality;
+mod submesh;
 pub mod tables;
 mod validate;
 
-pub use adjacency::{BoundaryFace, FaceAdjacency};
+pub use adjacency::{BoundaryFace, FaceAdjacency, VertexStars};
 pub use attributes::{Attribute, Attributes};
+pub use boundary::Boundary;
 pub use ids::{FragmentId, Tet, TetId, VertexId};
+pub use quality::{QualitySummary, TetQuality, tet_quality};
 pub use validate::{Severity, ValidationReport, Violation, ViolationKind};
 
 use crate::geom::{Aabb, DVec3, Sign, orient3d, signed_volume_inexact};
+use rayon::prelude::*;
 
 /// A tetrahedral mesh: positions, tets (four vertex ids each, positively oriented), and
 /// named per-vertex and per-tet attribute columns.
@@ -34,6 +40,16 @@ pub struct TetMesh {
     pub point_data: Attributes,
     /// Per-tet attribute columns (one row per tet).
     pub cell_data: Attributes,
+}
+
+/// What `from_arrays` found about one tet given.
+#[derive(Clone, Copy)]
+enum TetCheck {
+    Positive,
+    Reoriented,
+    OutOfRange,
+    Repeated,
+    Degenerate,
 }
 
 /// What [`TetMesh::from_arrays`] repaired or noticed while accepting a mesh.
@@ -84,51 +100,73 @@ impl TetMesh {
         if positions.len() >= u32::MAX as usize || tets.len() >= u32::MAX as usize {
             return Err(MeshError::TooLarge { max: u32::MAX - 1 });
         }
-        if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
+        if let Some(vertex) = positions.par_iter().position_first(|p| !p.is_finite()) {
             return Err(MeshError::NonFiniteCoordinate { vertex });
         }
         let n = positions.len();
+        // Tet by tet, in parallel: what is wrong with it or how it is oriented. The first
+        // failing tet in the given order is then reported.
+        let checks: Vec<TetCheck> = tets
+            .par_iter()
+            .map(|tet| {
+                if tet.iter().any(|&i| i as usize >= n) {
+                    return TetCheck::OutOfRange;
+                }
+                if (0..4).any(|a| (a + 1..4).any(|b| tet[a] == tet[b])) {
+                    return TetCheck::Repeated;
+                }
+                let p = tet.map(|i| positions[i as usize]);
+                match orient3d(p[0], p[1], p[2], p[3]) {
+                    Sign::Positive => TetCheck::Positive,
+                    Sign::Negative => TetCheck::Reoriented,
+                    Sign::Zero => TetCheck::Degenerate,
+                }
+            })
+            .collect();
         let mut report = ImportReport::default();
-        let mut out: Vec<Tet> = Vec::with_capacity(tets.len());
-        for (t, tet) in tets.iter().enumerate() {
-            for &i in tet {
-                if i as usize >= n {
+        for (t, check) in checks.iter().enumerate() {
+            match check {
+                TetCheck::Positive => {}
+                TetCheck::Reoriented => report.reoriented_tets += 1,
+                TetCheck::OutOfRange => {
+                    let index = tets[t]
+                        .iter()
+                        .copied()
+                        .find(|&i| i as usize >= n)
+                        .unwrap_or(0);
                     return Err(MeshError::IndexOutOfRange {
                         tet: t,
-                        index: i as u64,
+                        index: index as u64,
                         n_vertices: n,
                     });
                 }
-            }
-            for a in 0..4 {
-                for b in a + 1..4 {
-                    if tet[a] == tet[b] {
-                        return Err(MeshError::RepeatedVertex {
-                            tet: t,
-                            vertex: tet[a],
-                        });
-                    }
+                TetCheck::Repeated => {
+                    let tet = tets[t];
+                    let vertex = (0..4)
+                        .find_map(|a| (a + 1..4).find(|&b| tet[a] == tet[b]).map(|_| tet[a]))
+                        .unwrap_or(tet[0]);
+                    return Err(MeshError::RepeatedVertex { tet: t, vertex });
                 }
+                TetCheck::Degenerate => return Err(MeshError::DegenerateTet { tet: t }),
             }
-            let p = tet.map(|i| positions[i as usize]);
-            let mut ids = tet.map(VertexId);
-            match orient3d(p[0], p[1], p[2], p[3]) {
-                Sign::Positive => {}
-                Sign::Negative => {
-                    ids.swap(2, 3);
-                    report.reoriented_tets += 1;
-                }
-                Sign::Zero => return Err(MeshError::DegenerateTet { tet: t }),
-            }
-            out.push(ids);
         }
+        // Negative tets become positive by swapping their last two vertices.
+        let out: Vec<Tet> = tets
+            .par_iter()
+            .zip(checks.par_iter())
+            .map(|(t, check)| match check {
+                TetCheck::Reoriented => [t[0], t[1], t[3], t[2]].map(VertexId),
+                _ => t.map(VertexId),
+            })
+            .collect();
+        drop(tets);
         let mesh = TetMesh {
             positions,
             tets: out,
             point_data: Attributes::new(),
             cell_data: Attributes::new(),
         };
-        let validation = mesh.validate();
+        let validation = validate::validate_with(&mesh, false);
         if !validation.is_valid() {
             return Err(MeshError::Invalid(validation));
         }
@@ -136,8 +174,8 @@ impl TetMesh {
         Ok((mesh, report))
     }
 
-    /// A mesh assembled by the library's own algorithms (extraction, cuts), whose output is
-    /// valid by construction; not re-checked here (tests call [`validate`](Self::validate)).
+    /// A mesh from arrays the library built itself and knows to be consistent (indices in
+    /// range); no checks beyond a debug assertion. Callers validate in their tests.
     pub(crate) fn from_parts(positions: Vec<DVec3>, tets: Vec<Tet>) -> TetMesh {
         debug_assert!(
             tets.iter()

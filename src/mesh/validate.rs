@@ -2,9 +2,10 @@
 //! class reported with its count and first examples, so a failing test or a rejected file
 //! says what is wrong and where.
 
-use super::adjacency::face_vertices;
-use super::{FaceAdjacency, TetId, TetMesh, VertexId};
+use super::adjacency::{face_vertices, match_faces};
+use super::{TetId, TetMesh, VertexId};
 use crate::geom::{Aabb, DVec3, Sign, orient2d, orient3d};
+use rayon::prelude::*;
 use std::fmt;
 
 /// How many examples each violation class keeps.
@@ -137,6 +138,12 @@ impl fmt::Display for ValidationReport {
 }
 
 pub(super) fn validate(mesh: &TetMesh) -> ValidationReport {
+    validate_with(mesh, true)
+}
+
+/// [`validate`], with the per-tet checks (repeated vertices, orientation) made only when
+/// `check_tets`: `TetMesh::from_arrays` has just made them itself, tet by tet.
+pub(super) fn validate_with(mesh: &TetMesh, check_tets: bool) -> ValidationReport {
     let mut r = ValidationReport::default();
     let pos = mesh.positions();
     let tets = mesh.tets();
@@ -160,23 +167,13 @@ pub(super) fn validate(mesh: &TetMesh) -> ValidationReport {
         // Topology cannot be examined without positions for every index.
         return r;
     }
+    if check_tets {
+        check_tets_alone(mesh, &mut r);
+    }
     let mut used = vec![false; n];
-    for (t, tet) in tets.iter().enumerate() {
+    for tet in tets {
         for v in tet {
             used[v.idx()] = true;
-        }
-        if (0..4).any(|a| (a + 1..4).any(|b| tet[a] == tet[b])) {
-            r.add(ViolationKind::RepeatedVertex, || format!("tet {t} {tet:?}"));
-            continue;
-        }
-        let [a, b, c, d] = tet.map(|v| pos[v.idx()]);
-        if orient3d(a, b, c, d) != Sign::Positive {
-            r.add(ViolationKind::NonPositiveOrientation, || {
-                format!(
-                    "tet {t} (volume {:e})",
-                    mesh.tet_volume(TetId::from_usize(t))
-                )
-            });
         }
     }
     for (v, u) in used.iter().enumerate() {
@@ -184,26 +181,60 @@ pub(super) fn validate(mesh: &TetMesh) -> ValidationReport {
             r.add(ViolationKind::UnusedVertex, || format!("vertex {v}"));
         }
     }
-    let adj = FaceAdjacency::new(mesh);
-    for &(t, f, owners) in &adj.overshared {
+    let faces = match_faces(n, tets, false);
+    for &(t, f, owners) in &faces.overshared {
         r.add(ViolationKind::FaceOverShared, || {
             let fv = face_vertices(&mesh.tet(t), f as usize);
-            format!("face {fv:?} of tet {t} has {owners} tets")
+            format!("face {} of tet {t} has {owners} tets", vertex_list(&fv))
         });
     }
-    for &(t, f, u) in &adj.same_orientation {
+    for &(t, f, u) in &faces.same_orientation {
         r.add(ViolationKind::FaceSameOrientation, || {
             format!("face {f} of tet {t} and tet {u}")
         });
     }
-    let boundary: Vec<[VertexId; 3]> = adj
-        .boundary_faces()
+    let boundary: Vec<[VertexId; 3]> = faces
+        .boundary
         .iter()
         .map(|b| face_vertices(&mesh.tet(b.tet), b.face as usize))
         .collect();
-    check_manifold(&boundary, &mut r);
+    check_manifold(n, &boundary, &mut r);
     check_hanging(pos, &boundary, &mut r);
     r
+}
+
+/// Repeated vertices and orientation, tet by tet (in parallel; violations are rare and
+/// reported in tet order).
+fn check_tets_alone(mesh: &TetMesh, r: &mut ValidationReport) {
+    let pos = mesh.positions();
+    let bad: Vec<(usize, ViolationKind)> = mesh
+        .tets()
+        .par_iter()
+        .enumerate()
+        .filter_map(|(t, tet)| {
+            if (0..4).any(|a| (a + 1..4).any(|b| tet[a] == tet[b])) {
+                return Some((t, ViolationKind::RepeatedVertex));
+            }
+            let [a, b, c, d] = tet.map(|v| pos[v.idx()]);
+            (orient3d(a, b, c, d) != Sign::Positive)
+                .then_some((t, ViolationKind::NonPositiveOrientation))
+        })
+        .collect();
+    for (t, kind) in bad {
+        r.add(kind, || match kind {
+            ViolationKind::RepeatedVertex => format!("tet {t} {}", vertex_list(&mesh.tets()[t])),
+            _ => format!(
+                "tet {t} (volume {:e})",
+                mesh.tet_volume(TetId::from_usize(t))
+            ),
+        });
+    }
+}
+
+/// Vertices as "(a, b, c)" in messages.
+fn vertex_list(vs: &[VertexId]) -> String {
+    let ids: Vec<String> = vs.iter().map(|v| v.to_string()).collect();
+    format!("({})", ids.join(", "))
 }
 
 fn check_attributes(mesh: &TetMesh, r: &mut ValidationReport) {
@@ -225,46 +256,73 @@ fn check_attributes(mesh: &TetMesh, r: &mut ValidationReport) {
 
 /// Every boundary edge must bound exactly two boundary faces, traversed in opposite
 /// directions, and the boundary faces around each boundary vertex must form one fan.
-fn check_manifold(boundary: &[[VertexId; 3]], r: &mut ValidationReport) {
-    // (low, high, forward?) for each directed boundary edge.
-    let mut edges: Vec<(VertexId, VertexId, bool)> = Vec::with_capacity(boundary.len() * 3);
-    // (vertex, link edge) for each corner of each boundary face.
-    let mut links: Vec<(VertexId, VertexId, VertexId)> = Vec::with_capacity(boundary.len() * 3);
+/// Both are read from the corners of the boundary faces grouped by vertex (a counting
+/// sort): at vertex `a`, a corner's face goes `a -> next -> prev`, so edge `(a, w)` bounds
+/// one face per corner with `next == w` (traversing it away from `a`) or `prev == w`
+/// (towards `a`).
+fn check_manifold(n_vertices: usize, boundary: &[[VertexId; 3]], r: &mut ValidationReport) {
+    let mut start = vec![0u32; n_vertices + 1];
+    for v in boundary.iter().flatten() {
+        start[v.idx() + 1] += 1;
+    }
+    for i in 0..n_vertices {
+        start[i + 1] += start[i];
+    }
+    // (next, prev) of each corner, grouped by corner vertex.
+    let mut corners = vec![(VertexId::INVALID, VertexId::INVALID); 3 * boundary.len()];
+    let mut fill = start.clone();
     for f in boundary {
         for k in 0..3 {
-            let (a, b, c) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
-            edges.push((a.min(b), a.max(b), a < b));
-            links.push((a, b, c));
+            let slot = &mut fill[f[k].idx()];
+            corners[*slot as usize] = (f[(k + 1) % 3], f[(k + 2) % 3]);
+            *slot += 1;
         }
     }
-    edges.sort_unstable();
-    let mut bad_edges = false;
-    for run in edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
-        if run.len() != 2 || run[0].2 == run[1].2 {
-            bad_edges = true;
-            r.add(ViolationKind::NonManifoldBoundary, || {
-                format!(
-                    "edge ({}, {}) bounds {} boundary faces{}",
-                    run[0].0,
-                    run[0].1,
-                    run.len(),
-                    if run.len() == 2 {
-                        " with the same direction"
-                    } else {
-                        ""
-                    }
-                )
-            });
+    let around = |a: usize| &corners[start[a] as usize..start[a + 1] as usize];
+    // (low, high, faces on the edge, traversals away from low).
+    let mut bad_edges: Vec<(VertexId, VertexId, usize, usize)> = Vec::new();
+    for a in 0..n_vertices {
+        let cs = around(a);
+        let va = VertexId::from_usize(a);
+        for (i, &(next, prev)) in cs.iter().enumerate() {
+            for (k, w) in [next, prev].into_iter().enumerate() {
+                // Each edge once: from its lower end, at the first corner naming it.
+                let named_before =
+                    cs[..i].iter().any(|c| c.0 == w || c.1 == w) || (k == 1 && next == w);
+                if w <= va || named_before {
+                    continue;
+                }
+                let away = cs.iter().filter(|c| c.0 == w).count();
+                let towards = cs.iter().filter(|c| c.1 == w).count();
+                if away != 1 || towards != 1 {
+                    bad_edges.push((va, w, away + towards, away));
+                }
+            }
         }
     }
-    if bad_edges {
+    bad_edges.sort_unstable();
+    for &(lo, hi, faces, _) in &bad_edges {
+        r.add(ViolationKind::NonManifoldBoundary, || {
+            format!(
+                "edge ({lo}, {hi}) bounds {faces} boundary faces{}",
+                if faces == 2 {
+                    " with the same direction"
+                } else {
+                    ""
+                }
+            )
+        });
+    }
+    if !bad_edges.is_empty() {
         // Fans are only well defined once every edge is manifold.
         return;
     }
-    links.sort_unstable();
-    for run in links.chunk_by(|x, y| x.0 == y.0) {
-        // The link of the vertex: edges x -> y; count the cycles of that permutation.
-        let mut seen = vec![false; run.len()];
+    let mut seen = Vec::new();
+    for a in 0..n_vertices {
+        // The link of the vertex: edges next -> prev; count the cycles of that permutation.
+        let run = around(a);
+        seen.clear();
+        seen.resize(run.len(), false);
         let mut cycles = 0;
         for s in 0..run.len() {
             if seen[s] {
@@ -274,8 +332,8 @@ fn check_manifold(boundary: &[[VertexId; 3]], r: &mut ValidationReport) {
             let mut i = s;
             while !seen[i] {
                 seen[i] = true;
-                let next = run[i].2;
-                match run.iter().position(|l| l.1 == next) {
+                let next = run[i].1;
+                match run.iter().position(|l| l.0 == next) {
                     Some(j) => i = j,
                     None => break,
                 }
@@ -283,7 +341,7 @@ fn check_manifold(boundary: &[[VertexId; 3]], r: &mut ValidationReport) {
         }
         if cycles > 1 {
             r.add(ViolationKind::NonManifoldBoundary, || {
-                format!("vertex {} joins {cycles} separate boundary fans", run[0].0)
+                format!("vertex {a} joins {cycles} separate boundary fans")
             });
         }
     }
@@ -291,7 +349,8 @@ fn check_manifold(boundary: &[[VertexId; 3]], r: &mut ValidationReport) {
 
 /// A boundary vertex lying strictly inside a boundary face or edge it does not belong to is
 /// a T-junction: the mesh is not conforming there. Exact predicates decide; a uniform grid
-/// over the boundary faces keeps it linear.
+/// keeps it linear. The boundary vertices, sorted by grid cell, are small enough to stay
+/// in cache; each face (in parallel) looks up the vertices of the cells its box covers.
 fn check_hanging(pos: &[DVec3], boundary: &[[VertexId; 3]], r: &mut ValidationReport) {
     if boundary.is_empty() {
         return;
@@ -308,55 +367,70 @@ fn check_hanging(pos: &[DVec3], boundary: &[[VertexId; 3]], r: &mut ValidationRe
     let dims = ((bbox.extent() / cell).floor().as_uvec3() + 1).min(glam::UVec3::splat(1024));
     let index =
         |p: DVec3| -> glam::UVec3 { ((p - bbox.min) / cell).floor().as_uvec3().min(dims - 1) };
-    let flat = |c: glam::UVec3| (c.x + dims.x * (c.y + dims.y * c.z)) as usize;
-    let ncells = (dims.x * dims.y * dims.z) as usize;
-    let mut counts = vec![0u32; ncells + 1];
-    let cells_of = |f: &[VertexId; 3]| {
-        let b = Aabb::from_points(f.iter().map(|v| &pos[v.idx()]));
-        let (lo, hi) = (index(b.min), index(b.max));
-        (lo.z..=hi.z).flat_map(move |z| {
-            (lo.y..=hi.y).flat_map(move |y| (lo.x..=hi.x).map(move |x| glam::UVec3::new(x, y, z)))
-        })
-    };
-    for f in boundary {
-        for c in cells_of(f) {
-            counts[flat(c) + 1] += 1;
-        }
+    let flat =
+        |c: glam::UVec3| c.x as u64 + dims.x as u64 * (c.y as u64 + dims.y as u64 * c.z as u64);
+    let mut on_boundary = vec![false; pos.len()];
+    for v in boundary.iter().flatten() {
+        on_boundary[v.idx()] = true;
     }
-    for i in 0..ncells {
-        counts[i + 1] += counts[i];
-    }
-    let mut fill = counts.clone();
-    let mut items = vec![0u32; counts[ncells] as usize];
-    for (fi, f) in boundary.iter().enumerate() {
-        for c in cells_of(f) {
-            let s = &mut fill[flat(c)];
-            items[*s as usize] = fi as u32;
-            *s += 1;
-        }
-    }
-    let mut vertices: Vec<VertexId> = boundary.iter().flatten().copied().collect();
-    vertices.sort_unstable();
-    vertices.dedup();
-    for v in vertices {
-        let p = pos[v.idx()];
-        let c = flat(index(p));
-        for &fi in &items[counts[c] as usize..counts[c + 1] as usize] {
-            let f = &boundary[fi as usize];
-            if f.contains(&v) {
-                continue;
-            }
+    // (cell, vertex), sorted; cells alone in a second array for the searches.
+    let mut vertices: Vec<(u64, VertexId)> = (0..pos.len())
+        .filter(|&v| on_boundary[v])
+        .map(|v| (flat(index(pos[v])), VertexId::from_usize(v)))
+        .collect();
+    vertices.par_sort_unstable();
+    let cells: Vec<u64> = vertices.iter().map(|c| c.0).collect();
+    // (vertex, face) for every vertex lying on a face it is not part of.
+    let mut hits: Vec<(VertexId, u32)> = boundary
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(fi, f)| {
             let [a, b, q] = f.map(|w| pos[w.idx()]);
-            if p == a || p == b || p == q || orient3d(a, b, q, p) != Sign::Zero {
-                continue;
+            let fb = Aabb::from_points([a, b, q].iter());
+            let (lo, hi) = (index(fb.min), index(fb.max));
+            let mut found = Vec::new();
+            for z in lo.z..=hi.z {
+                for y in lo.y..=hi.y {
+                    // Cells of one row are consecutive in the flat order.
+                    let first = flat(glam::UVec3::new(lo.x, y, z));
+                    let last = flat(glam::UVec3::new(hi.x, y, z));
+                    let start = cells.partition_point(|&c| c < first);
+                    for &(c, v) in &vertices[start..] {
+                        if c > last {
+                            break;
+                        }
+                        let p = pos[v.idx()];
+                        // Cheapest exact tests first. On flat CAD boundaries many
+                        // candidates are coplanar with the face, where orient3d is exactly
+                        // zero and takes its slow exact path; the box and the projected-
+                        // triangle tests (a point in the triangle projects into its
+                        // projection) reject them before.
+                        if !f.contains(&v)
+                            && fb.contains(p)
+                            && p != a
+                            && p != b
+                            && p != q
+                            && point_in_coplanar_triangle(p, a, b, q)
+                            && orient3d(a, b, q, p) == Sign::Zero
+                        {
+                            found.push((v, fi as u32));
+                        }
+                    }
+                }
             }
-            if point_in_coplanar_triangle(p, a, b, q) {
-                r.add(ViolationKind::HangingVertex, || {
-                    format!("vertex {v} lies on boundary face {f:?}")
-                });
-                break;
-            }
-        }
+            found
+        })
+        .collect();
+    // One report per vertex, naming the first face it lies on.
+    hits.sort_unstable();
+    hits.dedup_by_key(|h| h.0);
+    for (v, fi) in hits {
+        r.add(ViolationKind::HangingVertex, || {
+            format!(
+                "vertex {v} lies on boundary face {}",
+                vertex_list(&boundary[fi as usize])
+            )
+        });
     }
 }
 

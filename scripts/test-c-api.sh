@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# The C API end to end, as a user meets it (run by scripts/test.sh after cargo test):
+#  1. scripts/install.sh into a fresh prefix, then the prefix moved elsewhere: everything
+#     below uses the moved copy, which proves the packages relocatable;
+#  2. the libraries: SONAME, symlinks, exported symbols = the header's functions;
+#  3. c-examples/ configured with only find_package(mtcut), built, run by ctest: the C99
+#     example, the NULL-argument test, the C++17 wrapper, the VTK round trip, and each
+#     under valgrind memcheck;
+#  4. minimal consumers: CMake with mtcut::mtcut, CMake with mtcut::mtcut_static,
+#     pkg-config; and a CMake version request the package must refuse.
+# Needs cargo, cmake, pkg-config, cc, readelf and nm (binutils), valgrind.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+for tool in cmake pkg-config cc readelf nm valgrind; do
+  command -v "$tool" >/dev/null || { echo "$0: $tool is needed" >&2; exit 1; }
+done
+work=$(mktemp -d "${TMPDIR:-/tmp}/mtcut-c-api.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+step() { printf '\n--> %s\n' "$*"; }
+fail() { echo "FAILED: $*" >&2; exit 1; }
+version=$(sed -n 's/^version = "\(.*\)"$/\1/p' Cargo.toml | head -n 1)
+major=${version%%.*}
+
+step "install into a fresh prefix, then move it"
+scripts/install.sh --prefix "$work/staged"
+mv "$work/staged" "$work/prefix"
+prefix=$work/prefix
+if grep -rl "$work/staged" "$prefix"; then
+  fail "the files above contain the absolute path they were installed to"
+fi
+
+step "libraries: SONAME, links, exported symbols"
+lib=$prefix/lib
+soname=$(readelf -d "$lib/libmtcut.so.$version" | sed -n 's/.*Library soname: \[\(.*\)\]/\1/p')
+[ "$soname" = "libmtcut.so.$major" ] || fail "SONAME is '$soname', expected libmtcut.so.$major"
+[ "$(readlink "$lib/libmtcut.so")" = "libmtcut.so.$major" ] || fail "libmtcut.so link"
+[ "$(readlink "$lib/libmtcut.so.$major")" = "libmtcut.so.$version" ] || fail "libmtcut.so.$major link"
+exported=$(nm -D --defined-only "$lib/libmtcut.so.$version" | awk '{print $3}' | sort)
+declared=$(sed -n 's/^[a-z].*[ *]\(mtcut_[a-z0-9_]*\)(.*/\1/p' include/mtcut.h | sort)
+diff <(echo "$exported") <(echo "$declared") ||
+  fail "the shared library's symbols (<) differ from the header's functions (>)"
+echo "SONAME $soname; $(echo "$exported" | wc -l) symbols, all declared in mtcut.h"
+
+step "c-examples: configure with find_package(mtcut), build, ctest (valgrind memcheck)"
+cmake -S c-examples -B "$work/examples" -DCMAKE_PREFIX_PATH="$prefix" \
+      -DCMAKE_BUILD_TYPE=Debug >/dev/null
+cmake --build "$work/examples" -j 2 >/dev/null
+ctest --test-dir "$work/examples" --output-on-failure
+if ! ctest --test-dir "$work/examples" -N | grep -q vtk_roundtrip; then
+  # CI installs libvtk9-dev: there the VTK example must have been built and run.
+  [ -z "${CI:-}" ] || fail "VTK 9 was not found: the VTK example did not run"
+  echo "note: VTK 9 not found, the VTK example was skipped (apt-get install libvtk9-dev)"
+fi
+
+consumer() { # NAME CMAKE-ARGS...: configure, build and run c-examples/consumer
+  local dir=$work/$1; shift
+  cmake -S c-examples/consumer -B "$dir" -DCMAKE_PREFIX_PATH="$prefix" "$@" >/dev/null
+  cmake --build "$dir" >/dev/null
+  "$dir/app"
+}
+step "consumer: find_package(mtcut CONFIG REQUIRED) + mtcut::mtcut"
+consumer shared
+readelf -d "$work/shared/app" | grep -q "NEEDED.*\[libmtcut.so.$major\]" ||
+  fail "the program does not record libmtcut.so.$major"
+
+step "consumer: find_package(mtcut CONFIG REQUIRED) + mtcut::mtcut_static"
+consumer static -DMTCUT_STATIC=ON
+if readelf -d "$work/static/app" | grep -q "NEEDED.*libmtcut"; then
+  fail "the statically linked program still needs libmtcut.so"
+fi
+
+step "consumer: pkg-config --cflags --libs mtcut"
+export PKG_CONFIG_PATH=$lib/pkgconfig
+[ "$(pkg-config --modversion mtcut)" = "$version" ] || fail "pkg-config version"
+# shellcheck disable=SC2046 # the flags are words
+cc -std=c99 -o "$work/pc-app" c-examples/consumer/app.c $(pkg-config --cflags --libs mtcut) \
+   -Wl,-rpath,"$(pkg-config --variable=libdir mtcut)"
+"$work/pc-app"
+
+step "CMake package version: SameMajorVersion"
+next=$((major + 1)).0
+if cmake -S c-examples/consumer -B "$work/too-new" -DCMAKE_PREFIX_PATH="$prefix" \
+         -DMTCUT_VERSION_REQUEST="$next" >"$work/too-new.log" 2>&1; then
+  fail "find_package(mtcut $next) accepted version $version"
+fi
+grep -q "version: $version" "$work/too-new.log" ||
+  fail "find_package(mtcut $next) failed for another reason: $(cat "$work/too-new.log")"
+echo "find_package(mtcut $next) refuses $version, as it must"
+
+step "C API checks passed"

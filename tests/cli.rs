@@ -1,0 +1,223 @@
+//! The `mtcut` command line: info, convert, demo, and bad input (non-zero exit, a message
+//! naming the problem, never a panic).
+
+mod common;
+use common::{data, mtcut, scratch, vtk_python, vtk_script};
+use serde_json::Value;
+use std::path::Path;
+
+fn stdout(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+fn stderr(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn info_json(path: &Path) -> Value {
+    let o = mtcut(&["info", path.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_str(&stdout(&o)).expect("one JSON object")
+}
+
+#[test]
+fn info_json_has_the_documented_keys() {
+    let j = info_json(&data("fandisk.node"));
+    for key in [
+        "vertices",
+        "tets",
+        "volume",
+        "boundary_faces",
+        "boundary_area",
+        "reoriented_tets",
+        "unused_vertices",
+        "valid",
+        "problems",
+    ] {
+        assert!(j.get(key).is_some(), "missing key {key}: {j}");
+    }
+    assert_eq!(j["vertices"], 9038);
+    assert_eq!(j["valid"], true);
+    assert_eq!(j["problems"].as_array().unwrap().len(), 0);
+}
+
+#[test]
+fn info_agrees_with_vtk() {
+    if !vtk_python() {
+        return;
+    }
+    for name in ["fandisk", "pinion", "liver"] {
+        let path = data(&format!("{name}.node"));
+        let ours = info_json(&path);
+        let reference: Value =
+            serde_json::from_str(&vtk_script("info_reference.py", &[path.to_str().unwrap()]))
+                .unwrap();
+        assert_eq!(ours["tets"], reference["tets"], "{name}");
+        assert_eq!(
+            ours["boundary_faces"], reference["boundary_faces"],
+            "{name}"
+        );
+        let (a, b) = (
+            ours["volume"].as_f64().unwrap(),
+            reference["volume"].as_f64().unwrap(),
+        );
+        assert!(
+            (a - b).abs() <= 1e-12 * b.abs(),
+            "{name}: volume {a} vs VTK {b}"
+        );
+    }
+}
+
+#[test]
+fn info_text_reports_validity() {
+    let o = mtcut(&["info", data("pinion.ele").to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(text.contains("tets       35696"), "{text}");
+    assert!(text.contains("valid      yes"), "{text}");
+}
+
+#[test]
+fn convert_to_tetgen_round_trips() {
+    let dir = scratch("convert");
+    let out = dir.join("copy.node");
+    let o = mtcut(&[
+        "convert",
+        data("liver.node").to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let a = info_json(&data("liver.node"));
+    let b = info_json(&out);
+    for key in [
+        "vertices",
+        "tets",
+        "volume",
+        "boundary_faces",
+        "boundary_area",
+    ] {
+        assert_eq!(a[key], b[key], "{key}");
+    }
+}
+
+/// Writes a TetGen pair `name.node/.ele` with the given bodies (headers included).
+fn tetgen_pair(dir: &Path, name: &str, node: &str, ele: &str) -> std::path::PathBuf {
+    std::fs::write(dir.join(format!("{name}.node")), node).unwrap();
+    std::fs::write(dir.join(format!("{name}.ele")), ele).unwrap();
+    dir.join(format!("{name}.node"))
+}
+
+const NODES5: &str = "5 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n4 0 0 -1\n";
+
+/// Runs `info` on a bad input: it must fail with a message containing every one of
+/// `needles`, and must not panic.
+fn rejects(path: &Path, needles: &[&str]) {
+    for json in [false, true] {
+        let mut args = vec!["info", path.to_str().unwrap()];
+        if json {
+            args.push("--json");
+        }
+        let o = mtcut(&args);
+        let err = stderr(&o);
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "exit code for {}: {err}",
+            path.display()
+        );
+        assert!(!err.contains("panicked"), "panic: {err}");
+        for n in needles {
+            assert!(err.contains(n), "message lacks '{n}': {err}");
+        }
+        if json {
+            let j: Value = serde_json::from_str(&stdout(&o)).expect("a JSON verdict");
+            assert_eq!(j["valid"], false);
+        }
+    }
+}
+
+#[test]
+fn bad_input_truncated_file() {
+    let dir = scratch("truncated");
+    let full = std::fs::read_to_string(data("fandisk.ele")).unwrap();
+    let cut = &full[..full.len() / 2];
+    std::fs::copy(data("fandisk.node"), dir.join("t.node")).unwrap();
+    std::fs::write(dir.join("t.ele"), cut).unwrap();
+    rejects(&dir.join("t.node"), &["t.ele", "truncated"]);
+}
+
+#[test]
+fn bad_input_nan_coordinate() {
+    let dir = scratch("nan");
+    let node = NODES5.replace("2 0 1 0", "2 0 nan 0");
+    let p = tetgen_pair(&dir, "m", &node, "2 4 0\n0 0 1 2 3\n1 0 2 1 4\n");
+    rejects(&p, &["m.node", "line 4", "NaN"]);
+}
+
+#[test]
+fn bad_input_index_out_of_range() {
+    let dir = scratch("range");
+    let p = tetgen_pair(&dir, "m", NODES5, "2 4 0\n0 0 1 2 3\n1 0 2 1 7\n");
+    rejects(&p, &["m.ele", "line 3", "node 7"]);
+}
+
+#[test]
+fn bad_input_repeated_vertex() {
+    let dir = scratch("repeated");
+    let p = tetgen_pair(&dir, "m", NODES5, "2 4 0\n0 0 1 2 3\n1 0 2 2 4\n");
+    rejects(&p, &["m.ele", "tetrahedron 1", "more than once"]);
+}
+
+#[test]
+fn bad_input_face_shared_by_three_tets() {
+    let dir = scratch("three");
+    let node = format!("{}5 0.2 0.2 2\n", NODES5.replacen("5 3", "6 3", 1));
+    let p = tetgen_pair(&dir, "m", &node, "3 4 0\n0 0 1 2 3\n1 0 2 1 4\n2 0 1 2 5\n");
+    rejects(&p, &["m.ele", "faces shared by more than two tets"]);
+}
+
+#[test]
+fn bad_input_garbage_bytes() {
+    let dir = scratch("garbage");
+    let bytes: Vec<u8> = (0..4096u32)
+        .map(|i| (i.wrapping_mul(2654435761) >> 13) as u8)
+        .collect();
+    std::fs::write(dir.join("g.node"), &bytes).unwrap();
+    std::fs::write(dir.join("g.ele"), &bytes).unwrap();
+    rejects(&dir.join("g.node"), &["g.node"]);
+}
+
+#[test]
+fn bad_input_missing_file_and_unknown_format() {
+    let dir = scratch("missing");
+    rejects(&dir.join("nothing.node"), &["nothing.node"]);
+    std::fs::write(dir.join("x.stl"), "solid x").unwrap();
+    rejects(&dir.join("x.stl"), &["x.stl", "unknown mesh format"]);
+}
+
+#[test]
+fn bad_input_non_tet_cell_in_vtu() {
+    let dir = scratch("non-tet-vtu");
+    // A tet and a hexahedron (VTK type 12) in an ASCII .vtu.
+    let vtu = r#"<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt32">
+  <UnstructuredGrid>
+    <Piece NumberOfPoints="8" NumberOfCells="2">
+      <Points>
+        <DataArray type="Float64" NumberOfComponents="3" format="ascii">
+          0 0 0  1 0 0  1 1 0  0 1 0  0 0 1  1 0 1  1 1 1  0 1 1
+        </DataArray>
+      </Points>
+      <Cells>
+        <DataArray type="Int64" Name="connectivity" format="ascii">0 1 3 4  0 1 2 3 4 5 6 7</DataArray>
+        <DataArray type="Int64" Name="offsets" format="ascii">4 12</DataArray>
+        <DataArray type="UInt8" Name="types" format="ascii">10 12</DataArray>
+      </Cells>
+    </Piece>
+  </UnstructuredGrid>
+</VTKFile>
+"#;
+    let path = dir.join("mixed.vtu");
+    std::fs::write(&path, vtu).unwrap();
+    rejects(&path, &["mixed.vtu", "cell 1", "type 12"]);
+}
