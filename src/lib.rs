@@ -23,13 +23,14 @@
 //!
 //! ## Layers (dependencies point down only)
 //!
-//! `geom` (predicates, planes) ← `mesh` (TetMesh, tables, adjacency, validation) ← `io`, `mt`
-//! (the multiresolution model: build, extract, validate, `.mt` files); [`ffi`], the C ABI,
-//! sits on top and is the only module allowed `unsafe` code.
-//! See ARCHITECTURE.md.
+//! `geom` (predicates, planes, cutting polygons) ← `mesh` (TetMesh, tables, adjacency,
+//! validation) ← `io`, `mt` (the multiresolution model: build, extract, validate, `.mt`
+//! files), `cut` (classification, split tables, separation); [`ffi`], the C ABI, sits on top
+//! and is the only module allowed `unsafe` code. See ARCHITECTURE.md.
 
 #![deny(unsafe_code)]
 
+pub mod cut;
 // The C ABI dereferences the caller's pointers: that is its whole job, and only its job.
 #[allow(unsafe_code)]
 pub mod ffi;

@@ -9,10 +9,12 @@
 //! that are *not* exact say so in their name (`*_inexact`).
 
 mod plane;
+mod polygon;
 mod predicates;
 mod tolerance;
 
 pub use plane::Plane;
+pub use polygon::{CutPolygon, PolygonError, scalpel_sweep};
 pub use predicates::{
     Sign, orient2d, orient3d, signed_volume, signed_volume_inexact, triangle_area, triangle_normal,
 };

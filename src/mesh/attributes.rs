@@ -84,11 +84,32 @@ impl Attributes {
         self.columns.iter().find(|c| c.len() != n)
     }
 
+    /// Makes room for `n` more elements in every column.
+    pub fn reserve(&mut self, n: usize) {
+        for c in &mut self.columns {
+            c.values.reserve(n * c.components);
+        }
+    }
+
     /// Appends to every column a copy of the values of element `src`.
     pub fn push_copy(&mut self, src: usize) {
         for c in &mut self.columns {
             let k = c.components;
             c.values.extend_from_within(src * k..(src + 1) * k);
+        }
+    }
+
+    /// Appends to every column a copy of the values of each element of `src`, in order
+    /// (the bulk form of [`push_copy`](Self::push_copy)).
+    pub fn push_copies(&mut self, src: &[u32]) {
+        for c in &mut self.columns {
+            let k = c.components;
+            let n = c.values.len();
+            c.values.resize(n + src.len() * k, 0.0);
+            for (j, &i) in src.iter().enumerate() {
+                let i = i as usize;
+                c.values.copy_within(i * k..(i + 1) * k, n + j * k);
+            }
         }
     }
 
@@ -151,6 +172,11 @@ mod tests {
         a.push_lerp(0, 1, 0.25);
         a.push_copy(0);
         assert_eq!(a.get("t").unwrap().values, vec![0.0, 10.0, 2.5, 0.0]);
+        a.push_copies(&[1, 2]);
+        assert_eq!(
+            a.get("t").unwrap().values,
+            vec![0.0, 10.0, 2.5, 0.0, 10.0, 2.5]
+        );
         assert_eq!(a.get("v").unwrap().get(2), &[1.75, 2.75, 3.75]);
         let s = a.select(&[3, 1]);
         assert_eq!(s.get("t").unwrap().values, vec![0.0, 10.0]);

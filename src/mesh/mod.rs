@@ -251,6 +251,37 @@ impl TetMesh {
         &mut self.positions
     }
 
+    /// Makes room for `tets` more tets and `vertices` more vertices (with their attribute
+    /// rows), so that appending them does not reallocate.
+    pub fn reserve(&mut self, tets: usize, vertices: usize) {
+        self.tets.reserve(tets);
+        self.positions.reserve(vertices);
+        self.cell_data.reserve(tets);
+        self.point_data.reserve(vertices);
+    }
+
+    /// Appends a vertex (attribute rows are the caller's: see [`Attributes::push_lerp`]).
+    pub(crate) fn push_vertex(&mut self, p: DVec3) -> VertexId {
+        self.positions.push(p);
+        VertexId::from_usize(self.positions.len() - 1)
+    }
+
+    /// Appends a tet (attribute rows are the caller's: see [`Attributes::push_copy`]).
+    pub(crate) fn push_tet(&mut self, t: Tet) -> TetId {
+        self.tets.push(t);
+        TetId::from_usize(self.tets.len() - 1)
+    }
+
+    /// Mutable tets, for algorithms that replace tets in place (cuts).
+    pub(crate) fn tets_mut(&mut self) -> &mut Vec<Tet> {
+        &mut self.tets
+    }
+
+    /// Mutable positions vector, for algorithms that append vertices in bulk.
+    pub(crate) fn positions_vec_mut(&mut self) -> &mut Vec<DVec3> {
+        &mut self.positions
+    }
+
     /// Face adjacency of this mesh (computed, not cached).
     pub fn adjacency(&self) -> FaceAdjacency {
         FaceAdjacency::new(self)

@@ -1,0 +1,290 @@
+//! Step 1 of the paper's cut (§3): find the tets the cut may touch, through a bounding-volume
+//! hierarchy over tets that lives as long as the mesh and is kept up to date as cuts add
+//! tets.
+//!
+//! Cuts only ever replace a tet by children lying inside it, so the hierarchy never needs
+//! refitting: a split tet's first child takes its slot and the others are chained after it
+//! in the same leaf (`next`). Each node also keeps the largest vertex scale below it, so a
+//! query knows how far from the plane a vertex may be and still be snapped onto the cut.
+
+use super::classify::{StateCache, StateClassifier, is_candidate};
+use crate::geom::{Aabb, CutPolygon, DVec3, Tolerance};
+use crate::mesh::{Tet, TetId};
+
+/// Tets per leaf at build time.
+const LEAF_SIZE: usize = 4;
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    bbox: Aabb,
+    max_scale: f64,
+    /// Leaf: range of `items`; inner node: `count == 0`, children `self + 1` and `right`.
+    first: u32,
+    count: u32,
+    right: u32,
+}
+
+/// The hierarchy (see the module docs).
+#[derive(Clone, Debug, Default)]
+pub struct TetBvh {
+    nodes: Vec<Node>,
+    /// Leaf contents: the first tet of each chain.
+    items: Vec<TetId>,
+    /// Per tet slot: the next tet of its leaf's chain.
+    next: Vec<TetId>,
+}
+
+/// How a query runs: in parallel over subtrees (then without the cache), or on one
+/// thread with a cache of the states of vertices near the plane.
+pub struct QueryOptions<'c> {
+    pub parallel: bool,
+    pub cache: &'c mut StateCache,
+}
+
+/// What a query found: candidate tets with their vertex states, and how many tets it
+/// classified on the way.
+#[derive(Clone, Debug, Default)]
+pub struct Candidates {
+    pub tets: Vec<TetId>,
+    pub states: Vec<[u8; 4]>,
+    pub tested: usize,
+}
+
+struct Query<'a> {
+    positions: &'a [DVec3],
+    scales: &'a [f64],
+    tets: &'a [Tet],
+    states: StateClassifier<'a>,
+    /// C's bounding box.
+    cbox: Aabb,
+    normal: DVec3,
+    abs_normal: DVec3,
+    offset: f64,
+    /// The snapping tolerance: a snapped vertex is within `snap × scale` of the plane,
+    /// and (its projection being within that distance of C) within twice that of C's box.
+    reach: f64,
+    /// Rounding slack of the floating-point box tests, at the scene's coordinate scale.
+    slack: f64,
+}
+
+impl TetBvh {
+    /// Builds the hierarchy over `tets` (median splits along the longest axis of the
+    /// centroids' box). `scales[v]` is vertex `v`'s scale (see [`super::vertex_scales`]).
+    pub fn build(positions: &[DVec3], scales: &[f64], tets: &[Tet]) -> TetBvh {
+        use rayon::prelude::*;
+        let boxes: Vec<(Aabb, DVec3, f64)> = tets
+            .par_iter()
+            .map(|t| {
+                let b = Aabb::from_points(t.iter().map(|v| &positions[v.idx()]));
+                let s = t.iter().map(|v| scales[v.idx()]).fold(0.0, f64::max);
+                (b, b.center(), s)
+            })
+            .collect();
+        let mut order: Vec<u32> = (0..tets.len() as u32).collect();
+        let mut bvh = TetBvh {
+            nodes: Vec::with_capacity(2 * tets.len() / LEAF_SIZE + 1),
+            items: Vec::with_capacity(tets.len()),
+            next: vec![TetId::INVALID; tets.len()],
+        };
+        if !tets.is_empty() {
+            bvh.build_node(&boxes, &mut order);
+        }
+        bvh
+    }
+
+    fn build_node(&mut self, boxes: &[(Aabb, DVec3, f64)], order: &mut [u32]) -> u32 {
+        let id = self.nodes.len() as u32;
+        let mut bbox = Aabb::EMPTY;
+        let mut cbox = Aabb::EMPTY;
+        let mut max_scale = 0.0f64;
+        for &i in order.iter() {
+            let (b, c, s) = boxes[i as usize];
+            bbox = bbox.union(&b);
+            cbox.grow(c);
+            max_scale = max_scale.max(s);
+        }
+        self.nodes.push(Node {
+            bbox,
+            max_scale,
+            first: 0,
+            count: 0,
+            right: 0,
+        });
+        if order.len() <= LEAF_SIZE {
+            let first = self.items.len() as u32;
+            self.items.extend(order.iter().map(|&i| TetId(i)));
+            let n = &mut self.nodes[id as usize];
+            n.first = first;
+            n.count = order.len() as u32;
+            return id;
+        }
+        let axis = cbox.extent().max_position();
+        let mid = order.len() / 2;
+        order.select_nth_unstable_by(mid, |&a, &b| {
+            boxes[a as usize].1[axis].total_cmp(&boxes[b as usize].1[axis])
+        });
+        let (left, right) = order.split_at_mut(mid);
+        self.build_node(boxes, left);
+        let r = self.build_node(boxes, right);
+        self.nodes[id as usize].right = r;
+        id
+    }
+
+    /// Makes room for tet slots up to `n` (before [`add_children`](Self::add_children)).
+    pub fn reserve_tets(&mut self, n: usize) {
+        if self.next.len() < n {
+            self.next.resize(n, TetId::INVALID);
+        }
+    }
+
+    /// Records that tet `parent` was split and its children other than the first (which
+    /// took `parent`'s slot) are `extra`: they join `parent`'s leaf.
+    pub fn add_children(&mut self, parent: TetId, extra: impl IntoIterator<Item = TetId>) {
+        let mut prev = parent;
+        let tail = self.next[parent.idx()];
+        for c in extra {
+            if self.next.len() <= c.idx() {
+                self.next.resize(c.idx() + 1, TetId::INVALID);
+            }
+            self.next[prev.idx()] = c;
+            prev = c;
+        }
+        self.next[prev.idx()] = tail;
+    }
+
+    /// The tets the cut by `polygon` may touch: those whose vertices straddle its plane or
+    /// include a vertex snapped onto it, in a deterministic order (depth first; parallel
+    /// over subtrees when `parallel`, with the same result).
+    pub fn candidates(
+        &self,
+        positions: &[DVec3],
+        scales: &[f64],
+        tets: &[Tet],
+        polygon: &CutPolygon,
+        snap: Tolerance,
+        options: QueryOptions<'_>,
+    ) -> Candidates {
+        let QueryOptions { parallel, cache } = options;
+        let mut out = Candidates::default();
+        if self.nodes.is_empty() {
+            return out;
+        }
+        let root = &self.nodes[0];
+        let coord = root.bbox.min.abs().max(root.bbox.max.abs()).max_element();
+        let q = Query {
+            positions,
+            scales,
+            tets,
+            states: StateClassifier::new(polygon, snap, &root.bbox, root.max_scale),
+            cbox: polygon.bbox(),
+            normal: polygon.normal(),
+            abs_normal: polygon.normal().abs(),
+            offset: polygon.plane().offset,
+            reach: snap.relative,
+            slack: 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element()),
+        };
+        if parallel {
+            self.visit_parallel(&q, 0, 0, &mut out);
+        } else {
+            cache.begin(positions.len());
+            self.visit(&q, 0, &mut out, Some(cache));
+        }
+        out
+    }
+
+    /// Whether a node can hold a candidate: its box meets the plane and C's box, both grown
+    /// by the largest snapping distance below it.
+    #[inline]
+    fn node_may_touch(&self, q: &Query<'_>, n: &Node) -> bool {
+        let plane_margin = q.reach * n.max_scale + q.slack;
+        let r = 2.0 * plane_margin;
+        let b = &n.bbox;
+        if b.min.x > q.cbox.max.x + r
+            || b.min.y > q.cbox.max.y + r
+            || b.min.z > q.cbox.max.z + r
+            || b.max.x < q.cbox.min.x - r
+            || b.max.y < q.cbox.min.y - r
+            || b.max.z < q.cbox.min.z - r
+        {
+            return false;
+        }
+        let c = (b.min + b.max) * 0.5;
+        let e = (b.max - b.min) * 0.5;
+        (q.normal.dot(c) - q.offset).abs() <= q.abs_normal.dot(e) + plane_margin
+    }
+
+    fn leaf(
+        &self,
+        q: &Query<'_>,
+        n: &Node,
+        out: &mut Candidates,
+        cache: &mut Option<&mut StateCache>,
+    ) {
+        for k in n.first..n.first + n.count {
+            let mut t = self.items[k as usize];
+            while t.is_valid() {
+                let tet = &q.tets[t.idx()];
+                let near = |v: crate::mesh::VertexId| {
+                    q.states.vertex(q.positions[v.idx()], q.scales[v.idx()])
+                };
+                let states = match cache {
+                    Some(c) => q
+                        .states
+                        .tet_with(q.positions, tet, |v| c.get(v, || near(v))),
+                    None => q.states.tet_with(q.positions, tet, near),
+                };
+                out.tested += 1;
+                if is_candidate(states) {
+                    out.tets.push(t);
+                    out.states.push(states);
+                }
+                t = self.next[t.idx()];
+            }
+        }
+    }
+
+    fn visit(
+        &self,
+        q: &Query<'_>,
+        node: u32,
+        out: &mut Candidates,
+        mut cache: Option<&mut StateCache>,
+    ) {
+        let mut stack = vec![node];
+        while let Some(i) = stack.pop() {
+            let n = &self.nodes[i as usize];
+            if !self.node_may_touch(q, n) {
+                continue;
+            }
+            if n.count > 0 {
+                self.leaf(q, n, out, &mut cache);
+            } else {
+                stack.push(n.right);
+                stack.push(i + 1);
+            }
+        }
+    }
+
+    /// Parallel depth-first traversal: the two subtrees of the top levels are visited in
+    /// parallel and their results concatenated left then right, as `visit` would list
+    /// them.
+    fn visit_parallel(&self, q: &Query<'_>, node: u32, depth: u32, out: &mut Candidates) {
+        let n = &self.nodes[node as usize];
+        if !self.node_may_touch(q, n) {
+            return;
+        }
+        if n.count > 0 || depth >= 6 {
+            return self.visit(q, node, out, None);
+        }
+        let (mut a, mut b) = (Candidates::default(), Candidates::default());
+        rayon::join(
+            || self.visit_parallel(q, node + 1, depth + 1, &mut a),
+            || self.visit_parallel(q, n.right, depth + 1, &mut b),
+        );
+        for part in [a, b] {
+            out.tets.extend(part.tets);
+            out.states.extend(part.states);
+            out.tested += part.tested;
+        }
+    }
+}

@@ -1,0 +1,807 @@
+//! Step 2 of the paper's cut (§3), first half: classify every vertex, edge and face the
+//! cut meets, **once**, and allocate the new vertices in a canonical order.
+//!
+//! A [`CutSession`] belongs to one cutting polygon. Its caches are keyed by *global*
+//! vertex ids (edges by their two ids, faces by their three), so tets handed to it in any
+//! number of batches — one level of a Multi-Tessellation after another, the frontier first
+//! and the rest later — share one cut point per edge and one face point per face. Lookups
+//! go through per-vertex lists hanging off the lowest id of the element, in arrays stamped
+//! with the session's epoch ([`CutScratch`]), so nothing is hashed and nothing is cleared
+//! between cuts.
+//!
+//! Classification is a pure function of positions and vertex scales: asking again gives
+//! the same answer, whichever tet asks first. Until [`CutSession::allocate`] gives the new
+//! points their ids (in canonical order), splitting uses provisional ids that
+//! [`CutSession::resolve`] maps to the final ones; so the tets around a vertex can be
+//! classified again ([`CutSession::forget_vertex`]) before anything is committed.
+
+use super::tables::{NEG, ON, POS, config_index, face_points, is_crossed};
+use crate::geom::{CutPolygon, DVec3, Sign, Tolerance};
+use crate::mesh::tables::{EDGE_OF_VERTICES, TET_EDGES, TET_FACES};
+use crate::mesh::{Tet, VertexId};
+
+/// "No record".
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// Where a vertex added by a cut comes from: the linear combination that gives its position
+/// (and its per-vertex attributes) from older vertices. The deformable cut of paper §5
+/// keeps these to map the cut surface between deformed and rest positions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum VertexOrigin {
+    /// A cut point on edge `a`–`b` (`a < b`): `(1 - t) a + t b`; `side` is the side of the
+    /// cut whose tets use this copy.
+    Edge {
+        a: VertexId,
+        b: VertexId,
+        t: f64,
+        positive: bool,
+    },
+    /// A face point (crack tip) in face `v` (`v[0] < v[1] < v[2]`): `Σ w[k] v[k]`.
+    Face { v: [VertexId; 3], w: [f64; 3] },
+    /// A copy of a vertex on the cut, for the tets of another side ([`super::unglue`]).
+    Copy { of: VertexId },
+}
+
+/// One edge crossed by the cut plane.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct EdgeRec {
+    pub lo: VertexId,
+    pub hi: VertexId,
+    /// Next record in the list of `lo`.
+    next: u32,
+    /// Crossing parameter from `lo`.
+    pub t: f64,
+    /// Crossed strictly inside C: the edge is cut.
+    pub cut: bool,
+    /// Cut-point copies on the positive / negative side (INVALID until allocated).
+    pub plus: VertexId,
+    pub minus: VertexId,
+}
+
+/// An end of the segment where the plane meets a face.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum SectionEnd {
+    Vertex(VertexId),
+    Edge(u32),
+}
+
+/// One face holding a face point.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FaceRec {
+    /// Sorted vertex ids.
+    pub v: [VertexId; 3],
+    next: u32,
+    /// Section segment ends, inside end first.
+    pub ends: [SectionEnd; 2],
+    pub w: [f64; 3],
+    pub id: VertexId,
+    /// Dropped by [`CutSession::forget_vertex`]: never found, never allocated.
+    pub dead: bool,
+}
+
+/// Provisional ids ([`CutSession::edge_points`] and [`CutSession::face_point`] before
+/// allocation) have this bit set; ids of a pool stay below it.
+pub(crate) const PROVISIONAL: u32 = 1 << 31;
+/// Provisional face-point ids have this bit set too.
+const PROVISIONAL_FACE: u32 = 1 << 30;
+
+/// A per-vertex cache of states for one cut (epoch-stamped: never cleared), for the
+/// vertices near the plane that many tets share.
+#[derive(Clone, Debug, Default)]
+pub struct StateCache {
+    epoch: u32,
+    stamp: Vec<u32>,
+    state: Vec<u8>,
+}
+
+impl StateCache {
+    /// Starts a new cut over a pool of `n_vertices`.
+    pub fn begin(&mut self, n_vertices: usize) {
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.epoch = 1;
+        }
+        if self.stamp.len() < n_vertices {
+            self.stamp.resize(n_vertices, 0);
+            self.state.resize(n_vertices, 0);
+        }
+    }
+
+    /// The cached state of `v`, computed by `f` on first request in this cut.
+    #[inline]
+    pub fn get(&mut self, v: VertexId, f: impl FnOnce() -> u8) -> u8 {
+        let i = v.idx();
+        if self.stamp[i] != self.epoch {
+            self.stamp[i] = self.epoch;
+            self.state[i] = f();
+        }
+        self.state[i]
+    }
+}
+
+/// Per-vertex arrays reused by every cut (epoch-stamped: never cleared). Owned by the mesh
+/// or MT that is cut, grown as vertices are added.
+#[derive(Clone, Debug, Default)]
+pub struct CutScratch {
+    epoch: u32,
+    stamp: Vec<u32>,
+    edge_head: Vec<u32>,
+    face_head: Vec<u32>,
+}
+
+impl CutScratch {
+    pub fn new() -> CutScratch {
+        CutScratch::default()
+    }
+
+    fn begin(&mut self, n_vertices: usize) -> u32 {
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            // Wrapped after 4 billion cuts: old stamps could collide, start afresh.
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.epoch = 1;
+        }
+        self.reserve(n_vertices);
+        self.epoch
+    }
+
+    fn reserve(&mut self, n_vertices: usize) {
+        if self.stamp.len() < n_vertices {
+            self.stamp.resize(n_vertices, 0);
+            self.edge_head.resize(n_vertices, NONE);
+            self.face_head.resize(n_vertices, NONE);
+        }
+    }
+}
+
+/// The classification of one tet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TetClass {
+    /// Vertex states ([`NEG`], [`ON`], [`POS`]) in the tet's local order.
+    pub states: [u8; 4],
+    /// Cut edges, bit `e` for local edge `e`.
+    pub cut_mask: u8,
+    /// Face points, bit `f` for local face `f`.
+    pub face_mask: u8,
+    /// Edge record of each crossed local edge.
+    pub(crate) edges: [u32; 6],
+    /// Face record of each local face holding a face point.
+    pub(crate) faces: [u32; 4],
+}
+
+impl TetClass {
+    /// Whether the tables replace this tet.
+    #[inline]
+    pub fn is_split(&self) -> bool {
+        self.cut_mask != 0 || self.face_mask != 0
+    }
+
+    /// Whether a vertex of the tet lies on the cut.
+    #[inline]
+    pub fn touches_cut(&self) -> bool {
+        self.states[0] == ON || self.states[1] == ON || self.states[2] == ON || self.states[3] == ON
+    }
+}
+
+/// Vertex state: snapped onto the cut (`ON`) when within `snap × scale` of the plane and
+/// its projection within the same distance of C; otherwise its exact side, a vertex
+/// exactly on the plane outside C counting as positive (it is not cut, so its side only
+/// has to be consistent).
+#[inline]
+pub fn vertex_state(polygon: &CutPolygon, snap: Tolerance, p: DVec3, scale: f64) -> u8 {
+    let d = polygon.signed_distance(p);
+    let r = snap.distance(scale);
+    if d.abs() <= r && polygon.projection_distance(p) <= r {
+        return ON;
+    }
+    match polygon.side_filtered(p, d) {
+        Sign::Negative => NEG,
+        _ => POS,
+    }
+}
+
+/// [`vertex_state`] with a fast path: one dot product decides every vertex farther from
+/// the plane than any snapping distance and any rounding error of that dot product, which
+/// is most of them. Same answers as `vertex_state`, always.
+#[derive(Clone, Copy, Debug)]
+pub struct StateClassifier<'a> {
+    polygon: &'a CutPolygon,
+    snap: Tolerance,
+    normal: DVec3,
+    offset: f64,
+    /// Rounding bound of the dot product over the whole mesh.
+    filter: f64,
+    /// Beyond this distance no vertex of the pool can be snapped.
+    far: f64,
+}
+
+impl<'a> StateClassifier<'a> {
+    /// A classifier for vertices inside `bounds` whose scales are at most `max_scale`.
+    pub fn new(
+        polygon: &'a CutPolygon,
+        snap: Tolerance,
+        bounds: &crate::geom::Aabb,
+        max_scale: f64,
+    ) -> StateClassifier<'a> {
+        let extent = bounds.min.abs().max(bounds.max.abs()).max_element();
+        let filter = polygon.filter_bound(extent);
+        StateClassifier {
+            polygon,
+            snap,
+            normal: polygon.plane().normal,
+            offset: polygon.plane().offset,
+            filter,
+            far: snap.distance(max_scale).max(filter),
+        }
+    }
+
+    #[inline(always)]
+    pub fn vertex(&self, p: DVec3, scale: f64) -> u8 {
+        let d = self.normal.dot(p) - self.offset;
+        let fast = self.snap.distance(scale).max(self.filter);
+        if d > fast {
+            POS
+        } else if d < -fast {
+            NEG
+        } else {
+            self.near(p, scale)
+        }
+    }
+
+    /// The cutting polygon.
+    pub fn polygon(&self) -> &'a CutPolygon {
+        self.polygon
+    }
+
+    /// The snapping tolerance.
+    pub fn snap(&self) -> Tolerance {
+        self.snap
+    }
+
+    /// [`vertex`](Self::vertex) for vertex `v` of a pool, reading its scale only when the
+    /// vertex is close enough to the plane for it to matter.
+    #[inline(always)]
+    pub fn pool_vertex(&self, positions: &[DVec3], scales: &[f64], v: VertexId) -> u8 {
+        let p = positions[v.idx()];
+        let d = self.normal.dot(p) - self.offset;
+        if d > self.far {
+            POS
+        } else if d < -self.far {
+            NEG
+        } else {
+            self.vertex(p, scales[v.idx()])
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn near(&self, p: DVec3, scale: f64) -> u8 {
+        vertex_state(self.polygon, self.snap, p, scale)
+    }
+
+    /// The states of a tet's vertices. Branch-free unless a vertex is near the plane (a
+    /// data-dependent branch per vertex would stall on every cache miss: the positions of a
+    /// tet's vertices are scattered in memory).
+    #[inline]
+    pub fn tet(&self, positions: &[DVec3], scales: &[f64], tet: &Tet) -> [u8; 4] {
+        self.tet_with(positions, tet, |v| {
+            self.vertex(positions[v.idx()], scales[v.idx()])
+        })
+    }
+
+    /// [`tet`](Self::tet), asking `near` for the state of each vertex close enough to the
+    /// plane to need more than one dot product (a caller may cache those).
+    #[inline]
+    pub fn tet_with(
+        &self,
+        positions: &[DVec3],
+        tet: &Tet,
+        mut near: impl FnMut(VertexId) -> u8,
+    ) -> [u8; 4] {
+        let d = tet.map(|v| self.normal.dot(positions[v.idx()]) - self.offset);
+        let close = d.map(|x| x.abs() <= self.far);
+        if !(close[0] | close[1] | close[2] | close[3]) {
+            return d.map(|x| if x > 0.0 { POS } else { NEG });
+        }
+        let mut out = [0u8; 4];
+        for j in 0..4 {
+            out[j] = if !close[j] {
+                if d[j] > 0.0 { POS } else { NEG }
+            } else {
+                near(tet[j])
+            };
+        }
+        out
+    }
+}
+
+/// The crossed edges of a tet in these states (bit `e` for local edge `e`).
+#[inline]
+pub fn crossed_mask(states: [u8; 4]) -> u8 {
+    static TABLE: std::sync::OnceLock<[u8; 81]> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| {
+        std::array::from_fn(|code| {
+            let s = [code % 3, code / 3 % 3, code / 9 % 3, code / 27 % 3].map(|x| x as u8);
+            let mut m = 0;
+            for (e, &[a, b]) in TET_EDGES.iter().enumerate() {
+                if is_crossed(s[a], s[b]) {
+                    m |= 1 << e;
+                }
+            }
+            m
+        })
+    });
+    table[config_index(states, 0) / 64]
+}
+
+/// The faces holding a face point (bit `f` for local face `f`) of a tet in these states
+/// with these cut edges ([`super::tables::face_has_point`], tabulated).
+#[inline]
+pub fn face_mask(states: [u8; 4], cut_mask: u8) -> u8 {
+    static TABLE: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| {
+        (0..super::tables::NB_CONFIGS)
+            .map(|c| {
+                let (s, m) = super::tables::config_of_index(c);
+                face_points(s, m)
+                    .iter()
+                    .enumerate()
+                    .fold(0u8, |acc, (f, &p)| acc | (u8::from(p) << f))
+            })
+            .collect()
+    });
+    table[config_index(states, cut_mask)]
+}
+
+/// Whether a tet in these states needs classifying (the plane crosses it, or a vertex is
+/// on the cut).
+#[inline]
+pub fn is_candidate(states: [u8; 4]) -> bool {
+    // One bit per state present.
+    let present = (1u8 << states[0]) | (1 << states[1]) | (1 << states[2]) | (1 << states[3]);
+    present & (1 << ON) != 0 || present & ((1 << POS) | (1 << NEG)) == (1 << POS) | (1 << NEG)
+}
+
+/// The classification state of one cut polygon (see the module docs).
+pub struct CutSession<'a> {
+    pub(crate) polygon: &'a CutPolygon,
+    pub(crate) snap: Tolerance,
+    face_margin: f64,
+    scratch: &'a mut CutScratch,
+    epoch: u32,
+    pub(crate) edges: Vec<EdgeRec>,
+    pub(crate) faces: Vec<FaceRec>,
+    /// Records not yet classified / allocated.
+    edges_classified: usize,
+    faces_computed: usize,
+    edges_allocated: usize,
+    faces_allocated: usize,
+}
+
+impl<'a> CutSession<'a> {
+    /// A session for `polygon` over a vertex pool of (at least) `n_vertices` vertices.
+    /// `snap` is the snapping tolerance (relative to vertex scales), `face_margin` the
+    /// smallest distance, as a fraction of the segment, between a face point and the ends
+    /// of the segment it lies on.
+    pub fn new(
+        polygon: &'a CutPolygon,
+        snap: Tolerance,
+        face_margin: f64,
+        scratch: &'a mut CutScratch,
+        n_vertices: usize,
+    ) -> CutSession<'a> {
+        let epoch = scratch.begin(n_vertices);
+        CutSession {
+            polygon,
+            snap,
+            face_margin,
+            scratch,
+            epoch,
+            edges: Vec::new(),
+            faces: Vec::new(),
+            edges_classified: 0,
+            faces_computed: 0,
+            edges_allocated: 0,
+            faces_allocated: 0,
+        }
+    }
+
+    /// A vertex classifier for this cut, for vertices inside `bounds` whose scales are at
+    /// most `max_scale`.
+    pub fn classifier(&self, bounds: &crate::geom::Aabb, max_scale: f64) -> StateClassifier<'a> {
+        StateClassifier::new(self.polygon, self.snap, bounds, max_scale)
+    }
+
+    fn head(&mut self, v: VertexId, face: bool) -> &mut u32 {
+        let i = v.idx();
+        if self.scratch.stamp[i] != self.epoch {
+            self.scratch.stamp[i] = self.epoch;
+            self.scratch.edge_head[i] = NONE;
+            self.scratch.face_head[i] = NONE;
+        }
+        if face {
+            &mut self.scratch.face_head[i]
+        } else {
+            &mut self.scratch.edge_head[i]
+        }
+    }
+
+    /// The record of edge `a`–`b`, created (unclassified) if new.
+    fn edge_record(&mut self, a: VertexId, b: VertexId) -> u32 {
+        let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+        let mut r = *self.head(lo, false);
+        while r != NONE {
+            let e = &self.edges[r as usize];
+            if e.hi == hi {
+                return r;
+            }
+            r = e.next;
+        }
+        let id = self.edges.len() as u32;
+        let head = self.head(lo, false);
+        let next = *head;
+        *head = id;
+        self.edges.push(EdgeRec {
+            lo,
+            hi,
+            next,
+            t: 0.0,
+            cut: false,
+            plus: VertexId::INVALID,
+            minus: VertexId::INVALID,
+        });
+        id
+    }
+
+    fn face_record(&mut self, v: [VertexId; 3], ends: [SectionEnd; 2]) -> u32 {
+        let mut r = *self.head(v[0], true);
+        while r != NONE {
+            let f = &self.faces[r as usize];
+            if f.v == v && !f.dead {
+                return r;
+            }
+            r = f.next;
+        }
+        let id = self.faces.len() as u32;
+        let head = self.head(v[0], true);
+        let next = *head;
+        *head = id;
+        self.faces.push(FaceRec {
+            v,
+            next,
+            ends,
+            w: [0.0; 3],
+            id: VertexId::INVALID,
+            dead: false,
+        });
+        id
+    }
+
+    /// Forgets the face points of faces containing `v`, whose state is about to change
+    /// (the cut leaves it unsnapped): the tets around `v` are then classified again, and
+    /// make new records. Only unallocated records may be forgotten.
+    pub fn forget_vertex(&mut self, v: VertexId) {
+        for f in &mut self.faces[self.faces_allocated..] {
+            if f.v.contains(&v) {
+                f.dead = true;
+            }
+        }
+    }
+
+    /// Classifies a batch of tets (their states already computed, see
+    /// [`StateClassifier::tet`]):
+    /// edges first (once each, whichever batch meets them first), then faces. Returns one
+    /// [`TetClass`] per tet. The pool must hold every vertex the tets use.
+    pub fn classify(
+        &mut self,
+        positions: &[DVec3],
+        scales: &[f64],
+        tets: &[Tet],
+        states: &[[u8; 4]],
+        parallel: bool,
+    ) -> Vec<TetClass> {
+        self.scratch.reserve(positions.len());
+        let mut classes: Vec<TetClass> = Vec::with_capacity(tets.len());
+        for (tet, &st) in tets.iter().zip(states) {
+            let mut edges = [NONE; 6];
+            let mut crossed = crossed_mask(st);
+            while crossed != 0 {
+                let e = crossed.trailing_zeros() as usize;
+                crossed &= crossed - 1;
+                let [a, b] = TET_EDGES[e];
+                edges[e] = self.edge_record(tet[a], tet[b]);
+            }
+            classes.push(TetClass {
+                states: st,
+                cut_mask: 0,
+                face_mask: 0,
+                edges,
+                faces: [NONE; 4],
+            });
+        }
+        self.classify_new_edges(positions, parallel);
+        for (tet, class) in tets.iter().zip(classes.iter_mut()) {
+            for e in 0..6 {
+                let r = class.edges[e];
+                if r != NONE && self.edges[r as usize].cut {
+                    class.cut_mask |= 1 << e;
+                }
+            }
+            class.face_mask = face_mask(class.states, class.cut_mask);
+            for (f, &lv) in TET_FACES.iter().enumerate() {
+                if class.face_mask & (1 << f) != 0 {
+                    let ends = self.section_ends(tet, class, lv);
+                    let mut v = lv.map(|i| tet[i]);
+                    v.sort_unstable();
+                    class.faces[f] = self.face_record(v, ends);
+                }
+            }
+        }
+        self.compute_new_faces(positions, scales, parallel);
+        classes
+    }
+
+    /// The ends of the segment where the plane meets the face `lv` of a tet, the inside end
+    /// (an ON vertex or a cut edge's point) first.
+    fn section_ends(&self, tet: &Tet, class: &TetClass, lv: [usize; 3]) -> [SectionEnd; 2] {
+        let mut inside = None;
+        let mut outside = None;
+        for k in 0..3 {
+            let (a, b) = (lv[k], lv[(k + 1) % 3]);
+            if class.states[a] == ON {
+                inside = Some(SectionEnd::Vertex(tet[a]));
+            }
+            let e = EDGE_OF_VERTICES[a][b];
+            if class.edges[e] != NONE {
+                let end = SectionEnd::Edge(class.edges[e]);
+                if class.cut_mask & (1 << e) != 0 {
+                    inside = Some(end);
+                } else {
+                    outside = Some(end);
+                }
+            }
+        }
+        match (inside, outside) {
+            (Some(i), Some(o)) => [i, o],
+            _ => unreachable!("a face with a face point has one inside and one outside end"),
+        }
+    }
+
+    /// Classifies the edges recorded since the last call: crossing parameter, and cut or
+    /// not (exactly). A cut point is kept `snap` away from its edge's ends: snapping
+    /// already guarantees it for vertices that could snap, and the clamp covers the ones a
+    /// cut leaves unsnapped (see [`super::Cutter::cut`]), whose cut points then pass the
+    /// plane by at most the snapping distance instead of making slivers.
+    fn classify_new_edges(&mut self, positions: &[DVec3], parallel: bool) {
+        let polygon = self.polygon;
+        let keep = self.snap.relative.min(0.5);
+        let work = |e: &mut EdgeRec| {
+            let (p, q) = (positions[e.lo.idx()], positions[e.hi.idx()]);
+            let (dp, dq) = (polygon.signed_distance(p), polygon.signed_distance(q));
+            let den = dp - dq;
+            e.t = if den != 0.0 {
+                (dp / den).clamp(0.0, 1.0)
+            } else {
+                0.5
+            };
+            e.cut = polygon.segment_crosses_inside_filtered(p, q, dp, dq);
+            if e.cut {
+                e.t = e.t.clamp(keep, 1.0 - keep);
+            }
+        };
+        let new = &mut self.edges[self.edges_classified..];
+        if parallel {
+            use rayon::prelude::*;
+            new.par_iter_mut().for_each(work);
+        } else {
+            new.iter_mut().for_each(work);
+        }
+        self.edges_classified = self.edges.len();
+    }
+
+    fn end_position(&self, positions: &[DVec3], end: SectionEnd) -> DVec3 {
+        match end {
+            SectionEnd::Vertex(v) => positions[v.idx()],
+            SectionEnd::Edge(r) => {
+                let e = &self.edges[r as usize];
+                let (p, q) = (positions[e.lo.idx()], positions[e.hi.idx()]);
+                p + (q - p) * e.t
+            }
+        }
+    }
+
+    /// Barycentric weights of a section end with respect to the sorted face `v`; an uncut
+    /// edge's crossing taken at parameter `t`.
+    fn end_weights(&self, v: [VertexId; 3], end: SectionEnd, t: f64) -> [f64; 3] {
+        let mut w = [0.0; 3];
+        let slot = |x: VertexId| v.iter().position(|&y| y == x).unwrap_or(0);
+        match end {
+            SectionEnd::Vertex(x) => w[slot(x)] = 1.0,
+            SectionEnd::Edge(r) => {
+                let e = &self.edges[r as usize];
+                w[slot(e.lo)] += 1.0 - t;
+                w[slot(e.hi)] += t;
+            }
+        }
+        w
+    }
+
+    /// Face points of the faces recorded since the last call (see also
+    /// [`super::options::CutOptions::face_point_margin`]).
+    ///
+    /// The face point lies on the segment from the face's section end in C to a point of
+    /// its uncut edge: where C's contour crosses the segment, kept `face_margin` from its
+    /// ends. The segment's outside end is the uncut edge's crossing moved towards the
+    /// edge's middle (by `face_margin` of the edge), as far as that keeps the face point
+    /// within 90% of the snapping distance of the plane: a crossing near a vertex would put
+    /// the face point next to an edge of its face (a thin or flat child), while a face
+    /// point far from the plane would make edges from the crack tip cross the plane inside
+    /// C by more than snapped vertices do. The true crossing is always allowed (its face
+    /// point is off the plane only as much as the inside end, a snapped vertex, is).
+    fn compute_new_faces(&mut self, positions: &[DVec3], scales: &[f64], parallel: bool) {
+        let start = self.faces_computed;
+        let computed: Vec<[f64; 3]> = {
+            let this = &*self;
+            let work = |f: &FaceRec| {
+                let pi = this.end_position(positions, f.ends[0]);
+                let po = this.end_position(positions, f.ends[1]);
+                let margin = this.face_margin;
+                let s = this
+                    .polygon
+                    .contour_parameter(pi, po)
+                    .clamp(margin, 1.0 - margin);
+                let t = match f.ends[1] {
+                    SectionEnd::Edge(r) => {
+                        let e = &this.edges[r as usize];
+                        let d = |v: VertexId| this.polygon.signed_distance(positions[v.idx()]);
+                        let (dlo, dhi, din) = (d(e.lo), d(e.hi), this.polygon.signed_distance(pi));
+                        let h = f.v.iter().map(|x| scales[x.idx()]).fold(0.0, f64::max);
+                        let budget = 0.9 * this.snap.distance(h);
+                        // Face-point distance (1 - s) din + s (dlo + t (dhi - dlo)) within
+                        // ±budget: an interval of t around the true crossing.
+                        let slope = s * (dhi - dlo);
+                        let base = (1.0 - s) * din + s * dlo;
+                        let (a, b) = ((-budget - base) / slope, (budget - base) / slope);
+                        let (lo, hi) = (a.min(b).max(0.0), a.max(b).min(1.0));
+                        let wanted = e.t.clamp(margin, 1.0 - margin);
+                        if lo <= hi { wanted.clamp(lo, hi) } else { e.t }
+                    }
+                    SectionEnd::Vertex(_) => 0.0,
+                };
+                let t_in = match f.ends[0] {
+                    SectionEnd::Edge(r) => this.edges[r as usize].t,
+                    SectionEnd::Vertex(_) => 0.0,
+                };
+                let (wi, wo) = (
+                    this.end_weights(f.v, f.ends[0], t_in),
+                    this.end_weights(f.v, f.ends[1], t),
+                );
+                std::array::from_fn(|k| (1.0 - s) * wi[k] + s * wo[k])
+            };
+            if parallel {
+                use rayon::prelude::*;
+                self.faces[start..].par_iter().map(work).collect()
+            } else {
+                self.faces[start..].iter().map(work).collect()
+            }
+        };
+        for (f, w) in self.faces[start..].iter_mut().zip(computed) {
+            f.w = w;
+        }
+        self.faces_computed = self.faces.len();
+    }
+
+    /// Allocates ids for the cut points and face points recorded since the last call, in
+    /// canonical order (cut edges by their id pair, positive copy first, then faces by
+    /// their id triple), starting at `first`. Returns each new vertex's origin in id order.
+    pub fn allocate(&mut self, first: VertexId) -> Vec<VertexOrigin> {
+        let mut order: Vec<u32> = (self.edges_allocated..self.edges.len())
+            .filter(|&r| self.edges[r].cut)
+            .map(|r| r as u32)
+            .collect();
+        order.sort_unstable_by_key(|&r| {
+            let e = &self.edges[r as usize];
+            (e.lo, e.hi)
+        });
+        let mut faces: Vec<u32> = (self.faces_allocated..self.faces.len())
+            .filter(|&r| !self.faces[r].dead)
+            .map(|r| r as u32)
+            .collect();
+        faces.sort_unstable_by_key(|&r| self.faces[r as usize].v);
+        let mut out = Vec::with_capacity(order.len() * 2 + faces.len());
+        let mut next = first.0;
+        for r in order {
+            let e = &mut self.edges[r as usize];
+            e.plus = VertexId(next);
+            e.minus = VertexId(next + 1);
+            next += 2;
+            for positive in [true, false] {
+                out.push(VertexOrigin::Edge {
+                    a: e.lo,
+                    b: e.hi,
+                    t: e.t,
+                    positive,
+                });
+            }
+        }
+        for r in faces {
+            let f = &mut self.faces[r as usize];
+            f.id = VertexId(next);
+            next += 1;
+            out.push(VertexOrigin::Face { v: f.v, w: f.w });
+        }
+        self.edges_allocated = self.edges.len();
+        self.faces_allocated = self.faces.len();
+        out
+    }
+
+    /// The cut-point copies of a cut edge record.
+    #[inline]
+    pub(crate) fn edge_points(&self, r: u32) -> (VertexId, VertexId) {
+        let e = &self.edges[r as usize];
+        if e.plus.is_valid() {
+            (e.plus, e.minus)
+        } else {
+            (
+                VertexId(PROVISIONAL | (2 * r)),
+                VertexId(PROVISIONAL | (2 * r + 1)),
+            )
+        }
+    }
+
+    #[inline]
+    pub(crate) fn face_point(&self, r: u32) -> VertexId {
+        let f = &self.faces[r as usize];
+        if f.id.is_valid() {
+            f.id
+        } else {
+            VertexId(PROVISIONAL | PROVISIONAL_FACE | r)
+        }
+    }
+
+    /// The allocated id of a vertex id handed out before allocation (ids below
+    /// 2³¹, the provisional range, are returned as they are).
+    #[inline]
+    pub fn resolve(&self, v: VertexId) -> VertexId {
+        if v.0 & PROVISIONAL == 0 {
+            return v;
+        }
+        if v.0 & PROVISIONAL_FACE != 0 {
+            return self.faces[(v.0 & !(PROVISIONAL | PROVISIONAL_FACE)) as usize].id;
+        }
+        let r = (v.0 & !PROVISIONAL) as usize;
+        let e = &self.edges[r / 2];
+        if r % 2 == 0 { e.plus } else { e.minus }
+    }
+
+    /// Number of edges the plane crosses among those classified so far, and how many are
+    /// cut.
+    pub fn edge_counts(&self) -> (usize, usize) {
+        (
+            self.edges.len(),
+            self.edges.iter().filter(|e| e.cut).count(),
+        )
+    }
+
+    /// Number of face points recorded so far.
+    pub fn face_count(&self) -> usize {
+        self.faces.len()
+    }
+}
+
+/// The position of a new vertex from its origin.
+pub fn origin_position(positions: &[DVec3], origin: &VertexOrigin) -> DVec3 {
+    match *origin {
+        VertexOrigin::Edge { a, b, t, .. } => {
+            let (p, q) = (positions[a.idx()], positions[b.idx()]);
+            p + (q - p) * t
+        }
+        VertexOrigin::Face { v, w } => {
+            positions[v[0].idx()] * w[0]
+                + positions[v[1].idx()] * w[1]
+                + positions[v[2].idx()] * w[2]
+        }
+        VertexOrigin::Copy { of } => positions[of.idx()],
+    }
+}

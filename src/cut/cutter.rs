@@ -1,0 +1,606 @@
+//! The cut of a plain [`TetMesh`]: the paper's steps 1 and 2 (§3) on one mesh, with the
+//! acceleration structure kept between cuts.
+
+use super::bielser::Bielser17Nodes;
+use super::bvh::{QueryOptions, TetBvh};
+use super::classify::{
+    CutScratch, CutSession, NONE, StateCache, TetClass, VertexOrigin, origin_position,
+};
+use super::options::{CutError, CutOptions, Scheme};
+use super::report::{CutResult, CutStats, CutTimes, SplitRecord};
+use super::split::{Children, split_tet};
+use super::tables::{NEG, ON, POS, Side};
+use super::unglue::{Copies, StarEntry, plan_copies};
+use crate::geom::{CutPolygon, DVec3, Sign};
+use crate::mesh::tables::TET_EDGES;
+use crate::mesh::{Attribute, FaceAdjacency, Tet, TetId, TetMesh, VertexId};
+use std::time::{Duration, Instant};
+
+/// The per-tet column marking tets created by cuts: the 1-based number of the cut that
+/// created the tet (within the meshes this library cut), 0 for tets not created by a cut.
+pub const CUT_COLUMN: &str = "mtcut:cut";
+
+/// The largest number of vertices or tets a mesh may reach while it is cut: ids are `u32`,
+/// and a cut in progress uses the ids from 2³¹ on as provisional ids for its new points.
+const MAX_ELEMENTS: usize = (1 << 31) - 1;
+
+/// The scale of each vertex: the length of its longest incident edge (0 for an unused
+/// vertex). Snapping distances are relative to it.
+pub fn vertex_scales(mesh: &TetMesh) -> Vec<f64> {
+    let pos = mesh.positions();
+    let mut s = vec![0.0f64; pos.len()];
+    for t in mesh.tets() {
+        for [a, b] in TET_EDGES {
+            let (u, v) = (t[a].idx(), t[b].idx());
+            let l = pos[u].distance(pos[v]);
+            s[u] = s[u].max(l);
+            s[v] = s[v].max(l);
+        }
+    }
+    s
+}
+
+/// A mesh ready to be cut many times: the mesh, its vertex scales and its tet hierarchy,
+/// all kept up to date by each cut, so a cut costs time in proportion to the tets it
+/// touches, not to the mesh.
+#[derive(Clone)]
+pub struct Cutter {
+    mesh: TetMesh,
+    scales: Vec<f64>,
+    bvh: TetBvh,
+    scratch: CutScratch,
+    state_cache: StateCache,
+    /// Dense index of each snapped vertex during a cut (valid for those only).
+    snapped_slot: Vec<u32>,
+    options: CutOptions,
+    cuts_applied: u32,
+    build_time: Duration,
+}
+
+impl Cutter {
+    /// Prepares `mesh` (which should be valid: see [`TetMesh::validate`]) for cutting with
+    /// `options`. Adds the [`CUT_COLUMN`] cell column if missing.
+    pub fn new(mesh: TetMesh, options: CutOptions) -> Result<Cutter, CutError> {
+        options.check()?;
+        Ok(Cutter::prepare(mesh, options))
+    }
+
+    /// [`new`](Self::new) with options already checked.
+    fn prepare(mut mesh: TetMesh, options: CutOptions) -> Cutter {
+        let start = Instant::now();
+        let scales = vertex_scales(&mesh);
+        let bvh = TetBvh::build(mesh.positions(), &scales, mesh.tets());
+        let build_time = start.elapsed();
+        let n = mesh.nb_tets();
+        let cuts_applied = match mesh.cell_data.get(CUT_COLUMN) {
+            Some(c) if c.components == 1 && c.len() == n => {
+                c.values.iter().fold(0.0f64, |m, &x| m.max(x)) as u32
+            }
+            _ => {
+                mesh.cell_data.insert(Attribute {
+                    name: CUT_COLUMN.to_string(),
+                    components: 1,
+                    values: vec![0.0; n],
+                });
+                0
+            }
+        };
+        Cutter {
+            mesh,
+            scales,
+            bvh,
+            scratch: CutScratch::new(),
+            state_cache: StateCache::default(),
+            snapped_slot: Vec::new(),
+            options,
+            cuts_applied,
+            build_time,
+        }
+    }
+
+    pub fn mesh(&self) -> &TetMesh {
+        &self.mesh
+    }
+
+    pub fn into_mesh(self) -> TetMesh {
+        self.mesh
+    }
+
+    pub fn options(&self) -> &CutOptions {
+        &self.options
+    }
+
+    /// Changes the options of the next cuts.
+    pub fn set_options(&mut self, options: CutOptions) -> Result<(), CutError> {
+        options.check()?;
+        self.options = options;
+        Ok(())
+    }
+
+    /// Makes room for `tets` more tets and `vertices` more vertices, so that the next cuts
+    /// adding up to that many do not reallocate the mesh's arrays (a simulation calls it
+    /// once, sized for the cuts it expects; without it arrays grow by doubling).
+    pub fn reserve(&mut self, tets: usize, vertices: usize) {
+        self.mesh.reserve(tets, vertices);
+        self.scales.reserve(vertices);
+        self.bvh.reserve_tets(self.mesh.nb_tets() + tets);
+    }
+
+    /// Time spent building the vertex scales and the hierarchy.
+    pub fn build_time(&self) -> Duration {
+        self.build_time
+    }
+
+    /// The scale of each vertex (see [`vertex_scales`]); vertices added by cuts take the
+    /// largest scale of the vertices they are made from.
+    pub fn vertex_scales(&self) -> &[f64] {
+        &self.scales
+    }
+
+    /// Number of cuts applied so far (the value [`CUT_COLUMN`] gives the tets of the next
+    /// cut, minus one).
+    pub fn cuts_applied(&self) -> u32 {
+        self.cuts_applied
+    }
+
+    /// Cuts the mesh with `polygon`: every tet C crosses is replaced by tets C does not
+    /// cross (paper §3 steps 1–2), the cut points are duplicated for the two sides, and the
+    /// vertices the cut passes through are duplicated where the sides separate.
+    ///
+    /// The cut is planned in full before the mesh changes. A snapped vertex that copies
+    /// cannot separate (a "pinched" one, see [`super::unglue`]) is left unsnapped: only the
+    /// tets around it are classified and split again, and the plan checked again. This
+    /// keeps the result a manifold mesh.
+    pub fn cut(&mut self, polygon: &CutPolygon) -> Result<CutResult, CutError> {
+        let opts = self.options;
+        let start = Instant::now();
+        let mut times = CutTimes::default();
+        let n_vertices = self.mesh.nb_vertices();
+        let n_tets = self.mesh.nb_tets();
+        let par = |n: usize| n >= opts.parallel_threshold;
+
+        // Step 1: candidates, in the hierarchy's depth-first order (deterministic: the
+        // hierarchy only depends on the mesh and the cuts applied to it).
+        let found = self.bvh.candidates(
+            self.mesh.positions(),
+            &self.scales,
+            self.mesh.tets(),
+            polygon,
+            opts.snap,
+            QueryOptions {
+                parallel: n_tets / 32 >= opts.parallel_threshold,
+                cache: &mut self.state_cache,
+            },
+        );
+        let cand = &found.tets;
+        let mut states = found.states.clone();
+        let tets: Vec<Tet> = cand.iter().map(|t| self.mesh.tet(*t)).collect();
+        times.query = start.elapsed().as_secs_f64();
+
+        // Step 2a: classify every edge and face once.
+        let t = Instant::now();
+        let positions = self.mesh.positions();
+        let mut session = CutSession::new(
+            polygon,
+            opts.snap,
+            opts.face_point_margin,
+            &mut self.scratch,
+            n_vertices,
+        );
+        let mut classes =
+            session.classify(positions, &self.scales, &tets, &states, par(tets.len()));
+        times.classify += t.elapsed().as_secs_f64();
+
+        // Step 2b planned: children (with provisional ids for new points), and the copies
+        // of snapped vertices; vertices that copies cannot separate are unsnapped and their
+        // tets planned again.
+        let t = Instant::now();
+        let bielser = match opts.scheme {
+            Scheme::Lut => None,
+            Scheme::Bielser17 => Some(Bielser17Nodes::allocate(
+                &session,
+                &tets,
+                &classes,
+                VertexId::from_usize(n_vertices),
+            )),
+        };
+        let split_one = |session: &CutSession<'_>, k: usize, class: &TetClass| -> Children {
+            let mut c = Children::new();
+            match &bielser {
+                None => split_tet(session, &tets[k], class, &mut c),
+                Some((nodes, _)) => nodes.split(&tets[k], class, &mut c),
+            };
+            c
+        };
+        let split_at: Vec<usize> = (0..tets.len()).filter(|&k| classes[k].is_split()).collect();
+        let computed: Vec<Children> = if par(split_at.len()) {
+            use rayon::prelude::*;
+            split_at
+                .par_iter()
+                .map(|&k| split_one(&session, k, &classes[k]))
+                .collect()
+        } else {
+            split_at
+                .iter()
+                .map(|&k| split_one(&session, k, &classes[k]))
+                .collect()
+        };
+        // children[child_of[k]] are candidate k's children (NONE: not split).
+        let mut child_of = vec![NONE; tets.len()];
+        for (i, &k) in split_at.iter().enumerate() {
+            child_of[k] = i as u32;
+        }
+        let mut children = computed;
+        times.split += t.elapsed().as_secs_f64();
+
+        let mut unsnapped: Vec<VertexId> = Vec::new();
+        let mut passes = 0;
+        // Vertices whose stars changed since the last pass (None: all).
+        let mut redo: Option<Vec<VertexId>> = None;
+        let mut copies = Copies::default();
+        let snapped = loop {
+            passes += 1;
+            let t = Instant::now();
+            let (star, snapped) =
+                Self::star_of_snapped(&self.mesh, polygon, &tets, &classes, &children, &child_of);
+            if opts.scheme == Scheme::Lut {
+                if self.snapped_slot.len() < self.mesh.nb_vertices() {
+                    self.snapped_slot.resize(self.mesh.nb_vertices(), 0);
+                }
+                for (i, v) in snapped.iter().enumerate() {
+                    self.snapped_slot[v.idx()] = i as u32;
+                }
+                let slots = &self.snapped_slot;
+                let update = plan_copies(&snapped, &star, redo.as_deref(), |v| {
+                    slots[v.idx()] as usize
+                });
+                copies = match &redo {
+                    None => update,
+                    Some(r) => std::mem::take(&mut copies).merge(r, update),
+                };
+            }
+            times.unglue += t.elapsed().as_secs_f64();
+            if copies.pinched.is_empty() {
+                break snapped;
+            }
+            let t = Instant::now();
+            let mut affected: Vec<usize> = Vec::new();
+            let pinched = std::mem::take(&mut copies.pinched);
+            for &u in &pinched {
+                let state = Self::unsnapped_state(&self.mesh, polygon, u, &tets);
+                session.forget_vertex(u);
+                for (k, tet) in tets.iter().enumerate() {
+                    if let Some(j) = tet.iter().position(|&x| x == u) {
+                        states[k][j] = state;
+                        affected.push(k);
+                    }
+                }
+            }
+            affected.sort_unstable();
+            affected.dedup();
+            unsnapped.extend_from_slice(&pinched);
+            let sub_tets: Vec<Tet> = affected.iter().map(|&k| tets[k]).collect();
+            let sub_states: Vec<[u8; 4]> = affected.iter().map(|&k| states[k]).collect();
+            let sub = session.classify(positions, &self.scales, &sub_tets, &sub_states, false);
+            let mut changed: Vec<VertexId> = pinched;
+            for (&k, class) in affected.iter().zip(sub) {
+                classes[k] = class;
+                child_of[k] = if class.is_split() {
+                    children.push(split_one(&session, k, &classes[k]));
+                    (children.len() - 1) as u32
+                } else {
+                    NONE
+                };
+                changed.extend(tets[k].iter().copied());
+            }
+            changed.sort_unstable();
+            changed.dedup();
+            redo = Some(changed);
+            times.classify += t.elapsed().as_secs_f64();
+        };
+
+        // Ids for the new points, in canonical order.
+        let t = Instant::now();
+        let first = VertexId::from_usize(n_vertices);
+        let mut origins = match &bielser {
+            None => session.allocate(first),
+            Some((_, o)) => o.clone(),
+        };
+        let live = || {
+            child_of
+                .iter()
+                .filter(|&&i| i != NONE)
+                .map(|&i| &children[i as usize])
+        };
+        let split_count = live().count();
+        let created_count: usize = live().map(|c| c.len).sum();
+        if n_vertices + origins.len() + copies.groups.len() > MAX_ELEMENTS
+            || n_tets + created_count > MAX_ELEMENTS
+        {
+            return Err(CutError::TooLarge {
+                max: MAX_ELEMENTS as u32,
+            });
+        }
+        let (edges_crossed, edges_cut) = session.edge_counts();
+        // Commit: new vertices, children, copies.
+        let mut first_appended = vec![0u32; tets.len()];
+        let mut next = n_tets as u32;
+        for (k, &i) in child_of.iter().enumerate() {
+            if i != NONE {
+                first_appended[k] = next;
+                next += children[i as usize].len as u32 - 1;
+            }
+        }
+        let slot = |virtual_slot: TetId| -> TetId {
+            let (k, c) = (virtual_slot.idx() / 32, virtual_slot.idx() % 32);
+            if c == 0 {
+                cand[k]
+            } else {
+                TetId(first_appended[k] + c as u32 - 1)
+            }
+        };
+        for &i in child_of.iter().filter(|&&i| i != NONE) {
+            let c = &mut children[i as usize];
+            for t in c.tets[..c.len].iter_mut() {
+                *t = t.map(|v| session.resolve(v));
+            }
+        }
+        drop(session);
+        times.classify += t.elapsed().as_secs_f64();
+
+        let t = Instant::now();
+        add_vertices(&mut self.mesh, &mut self.scales, &origins);
+        self.cuts_applied += 1;
+        let mark = self.cuts_applied as f64;
+        let mut by_case = [0usize; 10];
+        let mut appended_parents: Vec<u32> = Vec::with_capacity(created_count);
+        let mut records: Vec<SplitRecord> = Vec::with_capacity(split_count);
+        self.bvh.reserve_tets(n_tets + created_count);
+        for (k, &i) in child_of.iter().enumerate() {
+            if i == NONE {
+                continue;
+            }
+            let ch = &children[i as usize];
+            let parent = cand[k];
+            by_case[ch.case as usize] += 1;
+            self.mesh.tets_mut()[parent.idx()] = ch.tets[0];
+            let first_extra = self.mesh.nb_tets();
+            debug_assert_eq!(first_extra as u32, first_appended[k]);
+            for &t in &ch.tets[1..ch.len] {
+                self.mesh.push_tet(t);
+            }
+            records.push(SplitRecord {
+                parent,
+                first_appended: TetId::from_usize(first_extra),
+                children: ch.len as u8,
+                case: ch.case,
+            });
+            appended_parents.extend(std::iter::repeat_n(parent.0, ch.len - 1));
+            self.bvh.add_children(
+                parent,
+                (first_extra..first_extra + ch.len - 1).map(TetId::from_usize),
+            );
+        }
+        if let Some(col) = self.mesh.cell_data.get_mut(CUT_COLUMN) {
+            for r in &records {
+                col.values[r.parent.idx()] = mark;
+            }
+        }
+        self.mesh.cell_data.push_copies(&appended_parents);
+        times.split += t.elapsed().as_secs_f64();
+
+        let t = Instant::now();
+        let vertex_copies = copies.groups.len();
+        for (v, members) in copies.groups {
+            let copy = self.mesh.push_vertex(self.mesh.position(v));
+            self.scales.push(self.scales[v.idx()]);
+            self.mesh.point_data.push_copy(v.idx());
+            origins.push(VertexOrigin::Copy { of: v });
+            let all = self.mesh.tets_mut();
+            for m in members {
+                for x in all[slot(m).idx()].iter_mut() {
+                    if *x == v {
+                        *x = copy;
+                    }
+                }
+            }
+        }
+        times.unglue += t.elapsed().as_secs_f64();
+        times.cut = start.elapsed().as_secs_f64();
+
+        let t = Instant::now();
+        let components = opts
+            .count_components
+            .then(|| FaceAdjacency::new(&self.mesh).components().0);
+        times.components = t.elapsed().as_secs_f64();
+
+        let cut_points = origins
+            .iter()
+            .filter(|o| matches!(o, VertexOrigin::Edge { .. }))
+            .count();
+        let face_points = origins
+            .iter()
+            .filter(|o| matches!(o, VertexOrigin::Face { .. }))
+            .count();
+        let stats = CutStats {
+            scheme: opts.scheme,
+            tets_tested: found.tested,
+            tets_candidate: cand.len(),
+            tets_cut: split_count,
+            tets_cut_by_case: by_case,
+            tets_created: created_count,
+            vertices_added: origins.len(),
+            cut_points,
+            face_points,
+            vertex_copies,
+            vertices_snapped: snapped.len(),
+            vertices_unsnapped: unsnapped.len(),
+            plan_passes: passes,
+            edges_crossed,
+            edges_cut,
+            tets_after: self.mesh.nb_tets(),
+            vertices_after: self.mesh.nb_vertices(),
+            components,
+            time: times,
+        };
+        Ok(CutResult {
+            stats,
+            first_new_vertex: first,
+            origins,
+            splits: records,
+        })
+    }
+
+    /// The tets around the vertices snapped onto the cut, with their planned sides, and
+    /// those vertices (sorted). Tets are named by virtual slots: candidate `k`'s child `c`
+    /// is `32 k + c` (child 0 of a split tet, and an unsplit tet, take the tet's slot).
+    fn star_of_snapped(
+        mesh: &TetMesh,
+        polygon: &CutPolygon,
+        tets: &[Tet],
+        classes: &[TetClass],
+        children: &[Children],
+        child_of: &[u32],
+    ) -> (Vec<StarEntry>, Vec<VertexId>) {
+        let mut snapped: Vec<VertexId> = Vec::new();
+        let mut star: Vec<StarEntry> = Vec::new();
+        for (k, c) in classes.iter().enumerate() {
+            if !c.touches_cut() {
+                continue;
+            }
+            for (j, &s) in c.states.iter().enumerate() {
+                if s == ON {
+                    snapped.push(tets[k][j]);
+                }
+            }
+            match child_of[k] {
+                i if i != NONE => {
+                    let ch = &children[i as usize];
+                    for i in 0..ch.len {
+                        let on = ch.on_cut[i];
+                        for j in 0..4 {
+                            if on & (1 << j) != 0 {
+                                star.push(StarEntry {
+                                    vertex: ch.tets[i][j],
+                                    tet: TetId((32 * k + i) as u32),
+                                    verts: ch.tets[i],
+                                    side: ch.sides[i],
+                                });
+                            }
+                        }
+                    }
+                }
+                _ => {
+                    let side = Self::unsplit_side(mesh, polygon, &tets[k], &c.states);
+                    for (j, &s) in c.states.iter().enumerate() {
+                        if s == ON {
+                            star.push(StarEntry {
+                                vertex: tets[k][j],
+                                tet: TetId((32 * k) as u32),
+                                verts: tets[k],
+                                side,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        snapped.sort_unstable();
+        snapped.dedup();
+        (star, snapped)
+    }
+
+    /// The state of a snapped vertex left unsnapped: its exact side; for a vertex exactly
+    /// on the plane, the side of its neighbours off the plane when they are all on one
+    /// side (then no edge from it crosses the plane at it, which would make a cut point
+    /// coincide with it), positive otherwise.
+    fn unsnapped_state(mesh: &TetMesh, polygon: &CutPolygon, v: VertexId, tets: &[Tet]) -> u8 {
+        match polygon.side(mesh.position(v)) {
+            Sign::Negative => return NEG,
+            Sign::Positive => return POS,
+            Sign::Zero => {}
+        }
+        let (mut pos, mut neg) = (false, false);
+        for t in tets.iter().filter(|t| t.contains(&v)) {
+            for &x in t {
+                match polygon.side(mesh.position(x)) {
+                    Sign::Positive => pos = true,
+                    Sign::Negative => neg = true,
+                    Sign::Zero => {}
+                }
+            }
+        }
+        if neg && !pos { NEG } else { POS }
+    }
+
+    /// The side of a tet the tables leave whole but that touches the cut at a vertex: the
+    /// side of its other vertices; a tet with all four vertices snapped (a sliver lying in
+    /// the cut) goes to the side of its centroid.
+    fn unsplit_side(mesh: &TetMesh, polygon: &CutPolygon, tet: &Tet, states: &[u8; 4]) -> Side {
+        if states.contains(&POS) {
+            debug_assert!(
+                !states.contains(&NEG),
+                "an unsplit tet straddles at a snapped vertex"
+            );
+            return Side::Positive;
+        }
+        if states.contains(&NEG) {
+            return Side::Negative;
+        }
+        let c: DVec3 = tet.iter().map(|v| mesh.position(*v)).sum::<DVec3>() * 0.25;
+        if polygon.signed_distance(c) < 0.0 {
+            Side::Negative
+        } else {
+            Side::Positive
+        }
+    }
+}
+
+/// Appends the vertices of `origins` to `mesh` (positions, interpolated point data) and
+/// their scales to `scales`.
+fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrigin]) {
+    // New vertices are combinations of older ones only: positions can be computed first.
+    let new: Vec<DVec3> = origins
+        .iter()
+        .map(|o| origin_position(mesh.positions(), o))
+        .collect();
+    mesh.positions_vec_mut().extend(new);
+    for o in origins {
+        let scale = match *o {
+            VertexOrigin::Edge { a, b, t, .. } => {
+                mesh.point_data.push_lerp(a.idx(), b.idx(), t);
+                scales[a.idx()].max(scales[b.idx()])
+            }
+            VertexOrigin::Face { v, w } => {
+                mesh.point_data.push_combination(&[
+                    (v[0].idx(), w[0]),
+                    (v[1].idx(), w[1]),
+                    (v[2].idx(), w[2]),
+                ]);
+                v.iter().map(|x| scales[x.idx()]).fold(0.0, f64::max)
+            }
+            VertexOrigin::Copy { of } => {
+                mesh.point_data.push_copy(of.idx());
+                scales[of.idx()]
+            }
+        };
+        scales.push(scale);
+    }
+}
+
+/// Cuts `mesh` with `polygon` once (building the acceleration structure, timed in
+/// `stats.time.build`). To apply many cuts, keep a [`Cutter`].
+pub fn cut_mesh(
+    mesh: &mut TetMesh,
+    polygon: &CutPolygon,
+    options: &CutOptions,
+) -> Result<CutResult, CutError> {
+    options.check()?;
+    let mut cutter = Cutter::prepare(std::mem::take(mesh), *options);
+    let result = cutter.cut(polygon);
+    let build = cutter.build_time().as_secs_f64();
+    *mesh = cutter.into_mesh();
+    let mut result = result?;
+    result.stats.time.build = build;
+    Ok(result)
+}

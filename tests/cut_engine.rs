@@ -1,0 +1,405 @@
+//! The cut engine beyond random cuts: axis-aligned cuts of a structured grid (cuts exactly
+//! through vertices, along edges and faces), sequences of cuts crossing earlier ones,
+//! identical results on one and on all cores, attribute interpolation and the cut-cell
+//! marker, components extracted and written alone, the 1:17 baseline's guarantees, and the
+//! errors of bad polygons and options. Every cut is followed by `validate()`.
+
+mod cut_common;
+
+use cut_common::*;
+use mtcut::cut::{
+    CUT_COLUMN, Components, CutCase, CutError, CutOptions, Cutter, Scheme, VertexOrigin, cut_mesh,
+};
+use mtcut::geom::{CutPolygon, DVec3, PolygonError, Tolerance, scalpel_sweep};
+use mtcut::mesh::{Attribute, TetMesh, ViolationKind};
+
+fn assert_valid(m: &TetMesh, what: &str) {
+    let r = m.validate();
+    assert!(r.is_valid(), "{what}: {r}");
+}
+
+#[test]
+fn grid_cut_along_a_layer_of_faces_separates_without_splitting() {
+    // The plane x = 2 holds a whole layer of grid faces: every vertex on it is on the cut,
+    // no tet is split, and the two halves come apart by duplicating those vertices.
+    let n = 5;
+    let grid = grid_mesh(n);
+    let mut m = grid.clone();
+    let c = square(DVec3::new(2.0, 2.5, 2.5), DVec3::X, 10.0);
+    let r = cut_mesh(&mut m, &c, &CutOptions::DEFAULT).expect("cut");
+    assert_valid(&m, "x = 2");
+    assert_eq!(r.stats.tets_cut, 0);
+    assert_eq!(r.stats.vertex_copies, (n + 1) * (n + 1));
+    let comps = Components::of(&m);
+    assert_eq!(comps.count, 2);
+    let parts = comps.extract_all(&m);
+    let mut volumes: Vec<f64> = parts.iter().map(|p| p.volume()).collect();
+    volumes.sort_by(f64::total_cmp);
+    assert!((volumes[0] - 50.0).abs() < 1e-12 * 125.0 && (volumes[1] - 75.0).abs() < 1e-12 * 125.0);
+    for p in &parts {
+        assert_valid(p, "part");
+    }
+}
+
+#[test]
+fn grid_cuts_through_cells_vertices_and_diagonals() {
+    let n = 4;
+    let grid = grid_mesh(n);
+    let volume = grid.volume();
+    let cases = [
+        // Through cell middles: crossings at exactly half edges.
+        (DVec3::new(1.5, 2.0, 2.0), DVec3::X),
+        (DVec3::new(2.0, 2.0, 2.5), DVec3::Z),
+        // Diagonal planes through grid vertices, edges and faces.
+        (
+            DVec3::new(2.0, 2.0, 2.0),
+            DVec3::new(1.0, 1.0, 0.0).normalize(),
+        ),
+        (
+            DVec3::new(2.0, 2.0, 2.0),
+            DVec3::new(1.0, -1.0, 0.0).normalize(),
+        ),
+        (
+            DVec3::new(2.0, 2.0, 2.0),
+            DVec3::new(1.0, 1.0, 1.0).normalize(),
+        ),
+        (
+            DVec3::new(1.0, 2.0, 3.0),
+            DVec3::new(1.0, -1.0, 1.0).normalize(),
+        ),
+    ];
+    for (c, normal) in cases {
+        for (r, through) in [(20.0, true), (1.3, false)] {
+            let polygon = square(c, normal, r);
+            let mut m = grid.clone();
+            let res = cut_mesh(&mut m, &polygon, &CutOptions::DEFAULT).expect("cut");
+            let what = format!("plane through {c} normal {normal}, half-size {r}");
+            assert_valid(&m, &what);
+            assert!((m.volume() - volume).abs() <= 1e-12 * volume, "{what}");
+            if through {
+                assert!(res.stats.components.unwrap_or(0) >= 2, "{what}");
+            }
+            check_cut(
+                &grid,
+                &vertex_scales_of(&grid),
+                &m,
+                &polygon,
+                &res,
+                &CutOptions::DEFAULT,
+                through,
+            )
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        }
+    }
+}
+
+fn vertex_scales_of(m: &TetMesh) -> Vec<f64> {
+    mtcut::cut::vertex_scales(m)
+}
+
+#[test]
+fn sequences_of_cuts_crossing_earlier_cuts() {
+    // One mesh, cut again and again: each cut crosses the cracks and parts made before.
+    for (k, name) in MESHES.iter().enumerate() {
+        let input = mesh(name);
+        let volume = input.volume();
+        let options = CutOptions::DEFAULT;
+        let mut cutter = Cutter::new(input.clone(), options).expect("options");
+        let mut rng = Rng(77 + k as u64);
+        for step in 0..25 {
+            let kind = [Kind::Through, Kind::Partial, Kind::Tiny, Kind::Partial][step % 4];
+            let polygon = random_polygon(input, kind, &mut rng);
+            let before = cutter.mesh().clone();
+            let scales = cutter.vertex_scales().to_vec();
+            let res = cutter.cut(&polygon).expect("cut");
+            check_cut(
+                &before,
+                &scales,
+                cutter.mesh(),
+                &polygon,
+                &res,
+                &options,
+                false,
+            )
+            .unwrap_or_else(|e| panic!("{name}, cut {step} ({kind:?}): {e}"));
+            let v = cutter.mesh().volume();
+            assert!((v - volume).abs() <= 1e-12 * volume, "{name}, cut {step}");
+        }
+        let marks = cutter
+            .mesh()
+            .cell_data
+            .get(CUT_COLUMN)
+            .expect("marker column");
+        assert_eq!(marks.values.iter().fold(0.0f64, |a, &b| a.max(b)), 25.0);
+    }
+}
+
+#[test]
+fn one_thread_and_all_cores_give_the_same_mesh() {
+    let input = mesh("fandisk");
+    let mut rng = Rng(4242);
+    for kind in [Kind::Through, Kind::Partial, Kind::Vertices] {
+        let polygon = random_polygon(input, kind, &mut rng);
+        let run = |threshold: usize| {
+            let opts = CutOptions::DEFAULT.with_parallel_threshold(threshold);
+            let mut c = Cutter::new(input.clone(), opts).expect("options");
+            let r = c.cut(&polygon).expect("cut");
+            (c.into_mesh(), r.origins, r.splits)
+        };
+        let (seq, o1, s1) = run(usize::MAX);
+        let (par, o2, s2) = run(0);
+        assert!(
+            seq == par,
+            "{kind:?}: meshes differ between one and all cores"
+        );
+        assert_eq!(o1, o2);
+        assert_eq!(s1, s2);
+        assert_valid(&par, "parallel cut");
+    }
+}
+
+#[test]
+fn attributes_follow_the_cut() {
+    // A linear point field stays linear (interpolated at cut points and face points,
+    // copied at duplicated vertices); cell data is inherited; created tets are marked.
+    let mut m = mesh("pinion").clone();
+    let f = |p: DVec3| 2.0 * p.x - 3.0 * p.y + 0.5 * p.z + 1.0;
+    let values: Vec<f64> = m.positions().iter().map(|&p| f(p)).collect();
+    m.point_data
+        .insert(Attribute::new("f", 1, values).expect("column"));
+    let ids: Vec<f64> = (0..m.nb_tets()).map(|t| t as f64).collect();
+    m.cell_data
+        .insert(Attribute::new("id", 1, ids).expect("column"));
+    let before = m.nb_tets();
+    let mut rng = Rng(99);
+    let polygon = random_polygon(mesh("pinion"), Kind::Partial, &mut rng);
+    let r = cut_mesh(&mut m, &polygon, &CutOptions::DEFAULT).expect("cut");
+    assert_valid(&m, "pinion");
+    assert!(r.stats.cut_points > 0 && r.stats.face_points > 0);
+    let col = &m.point_data.get("f").expect("f").values;
+    for (v, p) in m.positions().iter().enumerate() {
+        assert!((col[v] - f(*p)).abs() < 1e-9, "vertex {v}");
+    }
+    let marks = &m.cell_data.get(CUT_COLUMN).expect("marker").values;
+    let id = &m.cell_data.get("id").expect("id").values;
+    let mut marked = 0;
+    for s in &r.splits {
+        for c in s.child_slots() {
+            assert_eq!(marks[c.idx()], 1.0);
+            assert_eq!(id[c.idx()], s.parent.0 as f64, "inherited");
+            marked += 1;
+        }
+    }
+    assert_eq!(marked, r.stats.tets_created);
+    assert_eq!(marks.iter().filter(|&&x| x == 1.0).count(), marked);
+    assert_eq!(
+        m.nb_tets(),
+        before - r.stats.tets_cut + r.stats.tets_created
+    );
+    // Origins describe every new vertex: positions are their linear combinations.
+    for (k, o) in r.origins.iter().enumerate() {
+        let v = r.first_new_vertex.idx() + k;
+        let p = match *o {
+            VertexOrigin::Edge { a, b, t, .. } => {
+                m.positions()[a.idx()].lerp(m.positions()[b.idx()], t)
+            }
+            VertexOrigin::Face { v: f, w } => (0..3)
+                .map(|i| m.positions()[f[i].idx()] * w[i])
+                .sum::<DVec3>(),
+            VertexOrigin::Copy { of } => m.positions()[of.idx()],
+        };
+        assert!((p - m.positions()[v]).length() < 1e-12, "vertex {v}");
+    }
+}
+
+#[test]
+fn components_are_extracted_and_written_alone() {
+    let input = mesh("liver");
+    let mut m = input.clone();
+    let c = square(
+        input.bbox().center(),
+        DVec3::new(0.2, 0.9, 0.3).normalize(),
+        1e3,
+    );
+    let r = cut_mesh(&mut m, &c, &CutOptions::DEFAULT).expect("cut");
+    assert_valid(&m, "liver");
+    let comps = Components::of(&m);
+    assert_eq!(Some(comps.count), r.stats.components);
+    assert!(comps.count >= 2);
+    let parts = comps.extract_all(&m);
+    let total: f64 = parts.iter().map(|p| p.volume()).sum();
+    assert!((total - input.volume()).abs() <= 1e-12 * input.volume());
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/cut-components");
+    std::fs::create_dir_all(&dir).expect("output dir");
+    for (k, p) in parts.iter().enumerate() {
+        assert_valid(p, "component");
+        assert_eq!(Components::of(p).count, 1);
+        let file = dir.join(format!("liver-{k}.node"));
+        mtcut::io::write_mesh(&file, p).expect("write");
+        let (back, _) = mtcut::io::read_mesh(&file).expect("read back");
+        assert_eq!(back.nb_tets(), p.nb_tets());
+    }
+    assert!(comps.extract(&m, comps.count).is_none());
+}
+
+#[test]
+fn the_1_17_scheme_keeps_volume_and_orientation_but_not_conformity() {
+    // What the paper says of it (§4.1): 17 tets per cut tet, not a simplicial complex.
+    let input = mesh("fandisk");
+    let mut m = input.clone();
+    let c = square(
+        input.bbox().center(),
+        DVec3::new(0.3, 0.5, 0.8).normalize(),
+        10.0,
+    );
+    let opts = CutOptions::DEFAULT.with_scheme(Scheme::Bielser17);
+    let r = cut_mesh(&mut m, &c, &opts).expect("cut");
+    assert_eq!(r.stats.tets_created, 17 * r.stats.tets_cut);
+    assert!((m.volume() - input.volume()).abs() <= 1e-12 * input.volume());
+    let report = m.validate();
+    assert_eq!(
+        report.count(ViolationKind::NonPositiveOrientation),
+        0,
+        "{report}"
+    );
+    assert!(report.count(ViolationKind::HangingVertex) > 0, "{report}");
+}
+
+#[test]
+fn statistics_add_up() {
+    let input = mesh("fandisk");
+    let mut m = input.clone();
+    let c = square(input.bbox().center(), DVec3::new(0.6, 0.0, 0.8), 0.3);
+    let r = cut_mesh(&mut m, &c, &CutOptions::DEFAULT).expect("cut");
+    let s = &r.stats;
+    assert_eq!(s.tets_cut_by_case.iter().sum::<usize>(), s.tets_cut);
+    assert!(s.cut_in(CutCase::A) + s.cut_in(CutCase::B) > 0);
+    assert!(
+        s.cut_in(CutCase::C) + s.cut_in(CutCase::D) + s.cut_in(CutCase::E) > 0,
+        "partial cut"
+    );
+    assert_eq!(
+        s.vertices_added,
+        s.cut_points + s.face_points + s.vertex_copies
+    );
+    assert_eq!(s.cut_points, 2 * s.edges_cut);
+    assert_eq!(s.tets_after, m.nb_tets());
+    assert_eq!(s.vertices_after, m.nb_vertices());
+    assert!(s.tets_tested >= s.tets_candidate && s.tets_candidate >= s.tets_cut);
+    assert!(s.time.build > 0.0 && s.time.cut > 0.0);
+    let json = s.to_json();
+    assert_eq!(json["tets_cut"], s.tets_cut);
+}
+
+#[test]
+fn bad_input_is_refused_with_a_reason() {
+    let p = |v: &[[f64; 3]]| v.iter().map(|a| DVec3::from_array(*a)).collect::<Vec<_>>();
+    assert!(matches!(
+        CutPolygon::new(&p(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])),
+        Err(PolygonError::TooFewPoints { count: 2 })
+    ));
+    let bent = CutPolygon::new(&p(&[
+        [0., 0., 0.],
+        [1., 0., 0.],
+        [1., 1., 0.1],
+        [0., 1., 0.],
+    ]));
+    let msg = bent.expect_err("not planar").to_string();
+    assert!(
+        msg.contains("not planar") && msg.contains("split it into triangles"),
+        "{msg}"
+    );
+    // The same bent quadrilateral as a blade sweep: two triangles.
+    let sweep = scalpel_sweep(
+        [DVec3::ZERO, DVec3::X],
+        [DVec3::Y, DVec3::new(1.0, 1.0, 0.1)],
+        Tolerance::DEFAULT,
+    )
+    .expect("sweep");
+    assert_eq!(sweep.len(), 2);
+    let mut m = mesh("fandisk").clone();
+    let c = square(DVec3::ZERO, DVec3::Z, 1.0);
+    let bad = CutOptions::DEFAULT.with_snap(Tolerance { relative: 0.5 });
+    let before = m.clone();
+    let err = cut_mesh(&mut m, &c, &bad).expect_err("refused");
+    assert!(
+        matches!(err, CutError::InvalidOption { option: "snap", .. }),
+        "{err}"
+    );
+    assert!(m == before, "a refused cut leaves the mesh alone");
+    assert!(Cutter::new(before, CutOptions::DEFAULT.with_face_point_margin(-1.0)).is_err());
+}
+
+#[test]
+fn batches_and_order_do_not_change_the_points() {
+    // The core the MT builds on: tets classified in one batch or several, in any order,
+    // share one cut point per edge and one face point per face, get the same canonical
+    // ids and the same children.
+    use mtcut::cut::classify::is_candidate;
+    use mtcut::cut::split::{Children, split_tet};
+    use mtcut::cut::{CutScratch, CutSession};
+    let input = mesh("pinion");
+    let scales = mtcut::cut::vertex_scales(input);
+    let max_scale = scales.iter().fold(0.0f64, |a, &b| a.max(b));
+    let mut rng = Rng(31337);
+    let polygon = random_polygon(input, Kind::Partial, &mut rng);
+    let opts = CutOptions::DEFAULT;
+    let run = |order: &[usize], batches: usize| {
+        let mut scratch = CutScratch::new();
+        let mut s = CutSession::new(
+            &polygon,
+            opts.snap,
+            opts.face_point_margin,
+            &mut scratch,
+            input.nb_vertices(),
+        );
+        let classifier = s.classifier(&input.bbox(), max_scale);
+        let tets: Vec<_> = order.iter().map(|&k| input.tets()[k]).collect();
+        let states: Vec<[u8; 4]> = tets
+            .iter()
+            .map(|t| classifier.tet(input.positions(), &scales, t))
+            .collect();
+        let mut classes = Vec::new();
+        let chunk = tets.len().div_ceil(batches);
+        for (ts, st) in tets.chunks(chunk).zip(states.chunks(chunk)) {
+            classes.extend(s.classify(input.positions(), &scales, ts, st, false));
+        }
+        let origins = s.allocate(mtcut::mesh::VertexId::from_usize(input.nb_vertices()));
+        let mut children: Vec<(usize, Vec<[u32; 4]>)> = Vec::new();
+        for ((&k, t), c) in order.iter().zip(&tets).zip(&classes) {
+            let mut ch = Children::new();
+            if split_tet(&s, t, c, &mut ch) {
+                let mut v: Vec<[u32; 4]> =
+                    ch.tets[..ch.len].iter().map(|x| x.map(|y| y.0)).collect();
+                v.sort_unstable();
+                children.push((k, v));
+            }
+        }
+        children.sort_unstable();
+        (origins, children)
+    };
+    let all: Vec<usize> = (0..input.nb_tets())
+        .filter(|&k| {
+            let t = input.tets()[k];
+            let st = t.map(|v| {
+                mtcut::cut::classify::vertex_state(
+                    &polygon,
+                    opts.snap,
+                    input.position(v),
+                    scales[v.idx()],
+                )
+            });
+            is_candidate(st)
+        })
+        .collect();
+    assert!(all.len() > 50);
+    let (o1, c1) = run(&all, 1);
+    let mut shuffled = all.clone();
+    for i in (1..shuffled.len()).rev() {
+        shuffled.swap(i, rng.below(i + 1));
+    }
+    let (o2, c2) = run(&shuffled, 5);
+    assert_eq!(o1, o2, "new points differ");
+    assert_eq!(c1, c2, "children differ");
+    assert!(!c1.is_empty());
+}
