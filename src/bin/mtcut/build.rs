@@ -69,7 +69,7 @@ pub fn progress_bar(quiet: bool) -> ProgressBar {
     };
     let bar = ProgressBar::with_draw_target(Some(1000), target);
     bar.set_style(
-        ProgressStyle::with_template("{spinner} building [{bar:40}] {percent:>3}% {elapsed} {msg}")
+        ProgressStyle::with_template("{spinner} building [{wide_bar}] {percent:>3}% {msg}")
             .expect("a constant, valid template")
             .progress_chars("=> "),
     );
