@@ -167,7 +167,7 @@ fn print_text(
         volume
     );
     println!(
-        "error      up to {:e}; {} fragments left unapplied",
+        "error      up to {:e}; {} fragment(s) not applied",
         s.max_error, s.refined_fragments
     );
     println!(
