@@ -565,6 +565,11 @@ fn build_rejects_bad_input() {
         &["--target-tets"],
     );
     fails(&["build", m], &["--output"]);
+    fails(
+        &["build", m, "-o", s(&dir.join("model.vtu"))],
+        &["model.vtu", "name it .mt"],
+    );
+    assert!(!dir.join("model.vtu").exists());
     assert!(!out.exists());
     fails(
         &["build", m, "-o", s(&dir.join("no/such/dir/m.mt"))],

@@ -96,6 +96,7 @@ fn file_size(path: &Path) -> u64 {
 }
 
 pub fn run(args: Args) -> CliResult {
+    parse::model_output(&args.output)?;
     let t_read = Instant::now();
     let (mesh, _report) = read_mesh(&args.mesh)?;
     let read_seconds = t_read.elapsed().as_secs_f64();

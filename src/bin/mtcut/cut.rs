@@ -21,7 +21,8 @@ use std::time::Instant;
 pub enum SchemeName {
     /// The paper's look-up tables: conforming, fewest tets.
     Lut,
-    /// Bielser et al.'s 1:17 split, for comparison: not conforming, the parts stay joined.
+    /// Bielser et al.'s 1:17 split, for comparison: not conforming (hanging vertices), so
+    /// its output does not validate.
     Bielser17,
 }
 

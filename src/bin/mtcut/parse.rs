@@ -125,3 +125,22 @@ pub fn mesh_output(path: &std::path::Path) -> Result<(), String> {
         )),
     }
 }
+
+/// Checks that a model is not about to be written under a mesh's name: `.mt` files are
+/// mtcut's own format, and a `.vtu` (or `.node`, `.ele`, `.mesh`) name would make it look
+/// like a mesh to other tools.
+pub fn model_output(path: &std::path::Path) -> Result<(), String> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    match ext.as_str() {
+        "vtu" | "node" | "ele" | "mesh" => Err(format!(
+            "{}: a model is written in mtcut's own format, not as a .{ext} mesh: name it .mt \
+             (use `mtcut extract` for meshes)",
+            path.display()
+        )),
+        _ => Ok(()),
+    }
+}
