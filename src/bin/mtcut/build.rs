@@ -76,7 +76,7 @@ pub fn progress_bar(quiet: bool) -> ProgressBar {
     bar
 }
 
-/// Builds the MT of the mesh at `path`, showing progress on `bar`.
+/// Builds the MT of `mesh`, showing progress on `bar` (cleared when the build ends).
 pub fn build_with_bar(
     mesh: &mtcut::mesh::TetMesh,
     options: &BuildOptions,
