@@ -221,3 +221,69 @@ fn bad_input_non_tet_cell_in_vtu() {
     std::fs::write(&path, vtu).unwrap();
     rejects(&path, &["mixed.vtu", "cell 1", "type 12"]);
 }
+
+#[test]
+fn demo_builds_extracts_cuts_and_lists_its_outputs() {
+    let dir = scratch("demo");
+    let o = mtcut(&["demo", "-o", dir.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    for needle in [
+        "embedded model: liver",
+        "valid      yes",
+        "MT ",
+        "levels",
+        "cut ",
+        "demo.pvd",
+    ] {
+        assert!(text.contains(needle), "lacks '{needle}': {text}");
+    }
+    let read = |name: &str| {
+        let (mesh, _) = mtcut::io::read_mesh(dir.join(name)).expect(name);
+        assert!(mesh.validate().is_valid(), "{name}");
+        mesh
+    };
+    let (input, _) = mtcut::io::read_mesh(data("liver.node")).unwrap();
+    let finest = read("liver-finest.vtu");
+    let middle = read("liver-middle.vtu");
+    let coarsest = read("liver-coarsest.vtu");
+    assert_eq!(finest.nb_tets(), input.nb_tets());
+    assert!(coarsest.nb_tets() < middle.nb_tets() && middle.nb_tets() < finest.nb_tets());
+    for m in [&finest, &middle, &coarsest] {
+        assert!(m.point_data.get(mtcut::mt::POINT_VERTEX).is_some());
+        assert!(m.cell_data.get(mtcut::mt::CELL_ERROR).is_some());
+    }
+    // The cut: two parts, each one piece, adding up to the finest level's volume.
+    let parts: Vec<_> = (0..2)
+        .map(|k| read(&format!("liver-cut-{k}.vtu")))
+        .collect();
+    assert!(!dir.join("liver-cut-2.vtu").exists());
+    let volume: f64 = parts.iter().map(|p| p.volume()).sum();
+    assert!((volume - input.volume()).abs() <= 1e-12 * input.volume());
+    for p in &parts {
+        assert_eq!(mtcut::cut::Components::of(p).count, 1);
+    }
+    // The collection lists exactly the .vtu files written, and each exists.
+    let pvd = std::fs::read_to_string(dir.join("demo.pvd")).unwrap();
+    let listed: Vec<&str> = pvd
+        .split("file=\"")
+        .skip(1)
+        .map(|r| r.split('"').next().unwrap())
+        .collect();
+    let mut written: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".vtu"))
+        .collect();
+    written.sort();
+    let mut listed_sorted: Vec<String> = listed.iter().map(|s| s.to_string()).collect();
+    listed_sorted.sort();
+    assert_eq!(listed_sorted, written);
+    assert_eq!(listed.len(), 5);
+    // The model is there, valid, and its finest level is the input.
+    let j = info_json(&dir.join("liver.mt"));
+    assert_eq!(j["kind"], "mt");
+    assert_eq!(j["valid"], true);
+    assert_eq!(j["finest_tets"], input.nb_tets());
+    assert!(dir.join("liver-quality.json").exists());
+}

@@ -1,15 +1,19 @@
-//! `mtcut info MESH [--json]`.
+//! `mtcut info MESH|MODEL.mt [--json]`: a mesh's numbers and validity, or an MT model's
+//! summary (a file is taken as a model when it starts with the `.mt` magic bytes or is
+//! named `*.mt`).
 
 use crate::CliResult;
 use mtcut::geom::Aabb;
 use mtcut::io::read_mesh;
-use mtcut::mesh::{ImportReport, QualitySummary, Severity, TetMesh};
+use mtcut::mesh::{FragmentId, ImportReport, QualitySummary, Severity, TetMesh};
+use mtcut::mt::{FragmentKind, MT_FILE_VERSION, MT_MAGIC, Mt, MtSummary};
 use serde_json::{Value, json};
-use std::path::PathBuf;
+use std::io::Read;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// The mesh (.vtu, .node/.ele, .mesh).
+    /// The mesh (.vtu, .node/.ele, .mesh) or model (.mt).
     mesh: PathBuf,
     /// Print one JSON object on stdout instead of text.
     #[arg(long)]
@@ -124,7 +128,158 @@ impl MeshInfo {
     }
 }
 
+/// Whether `path` is to be read as an `.mt` model: by its first bytes, or by its name when
+/// it cannot be read (so a missing `x.mt` is reported by the model loader).
+fn is_model(path: &Path) -> bool {
+    let mut head = [0u8; 8];
+    match std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut head)) {
+        Ok(()) if head == MT_MAGIC => true,
+        _ => path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("mt")),
+    }
+}
+
+/// Everything `info` reports about a model.
+struct ModelInfo {
+    summary: MtSummary,
+    /// Tets of the finest meshes (created by the roots).
+    finest_tets: usize,
+    /// Smallest and largest error of a collapse fragment (0, 0 when there is none).
+    error_range: (f64, f64),
+    problems: Vec<String>,
+}
+
+impl ModelInfo {
+    fn of(mt: &Mt) -> ModelInfo {
+        let finest_tets = mt
+            .roots()
+            .iter()
+            .flat_map(|&r| mt.created_tets(r))
+            .filter(|&t| !mt.is_ghost(t))
+            .count();
+        let errors = (0..mt.nb_fragments())
+            .map(FragmentId::from_usize)
+            .filter(|&f| mt.fragment_kind(f) == FragmentKind::Collapse)
+            .map(|f| mt.fragment_error(f));
+        let error_range = errors.fold(None, |r: Option<(f64, f64)>, e| {
+            Some(r.map_or((e, e), |(lo, hi)| (lo.min(e), hi.max(e))))
+        });
+        let validation = mt.validate();
+        let problems = validation
+            .violations
+            .iter()
+            .map(|v| {
+                format!(
+                    "{} × {:?} (first: {})",
+                    v.count,
+                    v.kind,
+                    v.examples.join("; ")
+                )
+            })
+            .collect();
+        ModelInfo {
+            summary: mt.summary(),
+            finest_tets,
+            error_range: error_range.unwrap_or((0.0, 0.0)),
+            problems,
+        }
+    }
+
+    fn to_json(&self) -> Value {
+        let mut j = self.summary.to_json();
+        if let Some(o) = j.as_object_mut() {
+            o.insert("kind".into(), json!("mt"));
+            o.insert("file_version".into(), json!(MT_FILE_VERSION));
+            o.insert("finest_tets".into(), json!(self.finest_tets));
+            o.insert("min_error".into(), json!(self.error_range.0));
+            o.insert("valid".into(), json!(self.problems.is_empty()));
+            o.insert("problems".into(), json!(self.problems));
+        }
+        j
+    }
+
+    fn print_text(&self) {
+        let s = &self.summary;
+        let i = &s.info;
+        let (lo, hi) = (s.bbox.min, s.bbox.max);
+        println!("format     mtcut model, file version {MT_FILE_VERSION}");
+        println!("vertices   {}", s.vertices);
+        println!(
+            "tets       {} over all levels (plus {} ghost tets), {} arcs",
+            s.pool_tets, s.ghost_tets, s.arcs
+        );
+        println!(
+            "fragments  {} (DAG depth {}), {} component(s)",
+            s.fragments, s.dag_depth, s.components
+        );
+        println!(
+            "finest     {} tets; coarsest {} tets ({:.1}%)",
+            self.finest_tets,
+            s.coarsest_tets,
+            100.0 * s.coarsest_tets as f64 / self.finest_tets.max(1) as f64
+        );
+        println!(
+            "error      {} metric, collapse errors {:e} .. {:e}",
+            i.error_metric, self.error_range.0, self.error_range.1
+        );
+        println!(
+            "build      boundary tolerance {} of the diagonal, features {} (angle {}°)",
+            i.boundary_tolerance,
+            if i.preserve_features {
+                "kept"
+            } else {
+                "not kept"
+            },
+            i.feature_angle_degrees
+        );
+        println!(
+            "bbox       [{}, {}, {}] .. [{}, {}, {}]",
+            lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
+        );
+        println!(
+            "memory     {} bytes ({:.1} per input tet)",
+            s.heap_bytes, s.bytes_per_input_tet
+        );
+        if self.problems.is_empty() {
+            println!("valid      yes");
+        } else {
+            println!("valid      NO");
+            for p in &self.problems {
+                println!("  problem: {p}");
+            }
+        }
+    }
+}
+
+fn run_model(args: &Args) -> CliResult {
+    let mt = match Mt::load(&args.mesh) {
+        Ok(mt) => mt,
+        Err(e) => {
+            if args.json {
+                println!("{}", json!({"valid": false, "problems": [e.to_string()]}));
+            }
+            return Err(e.into());
+        }
+    };
+    let info = ModelInfo::of(&mt);
+    if args.json {
+        println!("{}", info.to_json());
+    } else {
+        println!("model      {}", args.mesh.display());
+        info.print_text();
+    }
+    if info.problems.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("{} is not a valid model", args.mesh.display()).into())
+    }
+}
+
 pub fn run(args: Args) -> CliResult {
+    if is_model(&args.mesh) {
+        return run_model(&args);
+    }
     let (mesh, report) = match read_mesh(&args.mesh) {
         Ok(x) => x,
         Err(e) => {

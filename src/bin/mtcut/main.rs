@@ -1,9 +1,13 @@
 //! `mtcut`: the command-line tool. Each subcommand lives in its own file and maps onto the
 //! library's API; this file only parses arguments and turns errors into exit codes.
 
+mod build;
 mod convert;
+mod cut;
 mod demo;
+mod extract;
 mod info;
+mod parse;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -18,16 +22,23 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Print a mesh's size, volume, boundary, quality and validation result.
+    /// Print a mesh's size, volume, boundary, quality and validation result, or an .mt
+    /// model's summary.
     Info(info::Args),
     /// Convert a mesh between formats (.vtu, .node/.ele, .mesh in; .vtu, .node/.ele out).
     Convert(convert::Args),
+    /// Build the multiresolution model (.mt) of a mesh by edge-collapse simplification.
+    Build(build::Args),
+    /// Extract a mesh at a chosen resolution from an .mt model.
+    Extract(extract::Args),
+    /// Cut a mesh with planar convex polygons, applied in order.
+    Cut(cut::Args),
     /// Run the main job on the embedded liver model and write the results to a folder.
     Demo(demo::Args),
 }
 
 /// Errors are reported as `mtcut: error: ...` on stderr with exit code 1; usage errors
-/// are clap's (exit code 2).
+/// (unknown or conflicting options, unparsable numbers) are clap's (exit code 2).
 pub type CliResult = Result<(), Box<dyn std::error::Error>>;
 
 fn main() -> ExitCode {
@@ -35,6 +46,9 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Info(a) => info::run(a),
         Command::Convert(a) => convert::run(a),
+        Command::Build(a) => build::run(a),
+        Command::Extract(a) => extract::run(a),
+        Command::Cut(a) => cut::run(a),
         Command::Demo(a) => demo::run(a),
     };
     match result {
