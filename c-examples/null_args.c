@@ -339,7 +339,7 @@ static void check_attributes(mtcut_mesh *mesh) {
 }
 
 /* A triangle across the cube at z = 0.5, larger than the cube. */
-static const double plane_xyz[9] = {-1, -1, 0.5, 3, -1, 0.5, -1, 3, 0.5};
+static const double plane_xyz[9] = {-1, -1, 0.5, 5, -1, 0.5, -1, 5, 0.5};
 
 static void check_cut(mtcut_mesh *mesh) {
   mtcut_cut_options o;
