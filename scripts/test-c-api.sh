@@ -7,7 +7,8 @@
 #     example, the NULL-argument test, the C++17 wrapper, the VTK round trip, and each
 #     under valgrind memcheck;
 #  4. minimal consumers: CMake with mtcut::mtcut, CMake with mtcut::mtcut_static,
-#     pkg-config; and a CMake version request the package must refuse;
+#     pkg-config, the README's C snippet; and a CMake version request the package must
+#     refuse;
 #  5. ParaView (pvbatch under xvfb-run) opens what the examples wrote - a plain mesh, cut
 #     meshes, extractions - and `mtcut demo`'s outputs (and any FILE.pvd given), checks
 #     counts and arrays, and saves screenshots (scripts/pvbatch-check.py).
@@ -92,6 +93,16 @@ export PKG_CONFIG_PATH=$lib/pkgconfig
 cc -std=c99 -o "$work/pc-app" c-examples/consumer/app.c $(pkg-config --cflags --libs mtcut) \
    -Wl,-rpath,"$(pkg-config --variable=libdir mtcut)"
 "$work/pc-app"
+
+step "README: the C snippet compiles (C99, every warning an error) and runs"
+awk '/compiles and runs this very snippet/ {found = 1} found && /^```c$/ {inside = 1; next}
+     inside && /^```$/ {exit} inside {print}' README.md > "$work/readme.c"
+[ -s "$work/readme.c" ] || fail "no C snippet found in README.md"
+# shellcheck disable=SC2046 # the flags are words
+cc -std=c99 -pedantic -Wall -Wextra -Werror -o "$work/readme" "$work/readme.c" \
+   $(pkg-config --cflags --libs mtcut) -Wl,-rpath,"$(pkg-config --variable=libdir mtcut)"
+(cd "$work" && ./readme "$OLDPWD/tests/data/pinion-coarse.node" && [ -s cut.vtu ]) ||
+  fail "the README's C snippet"
 
 step "CMake package version: SameMajorVersion"
 next=$((major + 1)).0

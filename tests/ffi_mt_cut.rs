@@ -690,7 +690,7 @@ fn random_extraction_options_never_panic() {
     let f = Front(out);
     let mut accepted = 0;
     for seed in 1..=300u64 {
-        let mut rng = Rng(seed.wrapping_mul(0x51_7cc1_b727_220a_95));
+        let mut rng = Rng(seed.wrapping_mul(0x517c_c1b7_2722_0a95));
         let mut o = extract_options();
         o.threshold = rng.coordinate();
         o.focus = rng.below(4) as u32;

@@ -180,9 +180,9 @@ fn polygon_failure(e: PolygonError, arg: &str) -> Failure {
 ///
 /// # Safety
 /// A non-NULL `xyz` must point to `3 x n` readable doubles.
-unsafe fn points<'a>(xyz: *const f64, n: usize, arg: &str) -> FfiResult<Vec<DVec3>> {
+unsafe fn points(xyz: *const f64, n: usize, arg: &str) -> FfiResult<Vec<DVec3>> {
     // SAFETY: forwarded contract.
-    let flat: &'a [f64] = unsafe { slice(xyz, flat_len(n, 3, "points")?, arg) }?;
+    let flat: &[f64] = unsafe { slice(xyz, flat_len(n, 3, "points")?, arg) }?;
     Ok(flat
         .chunks_exact(3)
         .map(|p| DVec3::new(p[0], p[1], p[2]))
