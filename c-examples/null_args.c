@@ -338,6 +338,229 @@ static void check_attributes(mtcut_mesh *mesh) {
   UNTOUCHED(count == 1);
 }
 
+/* A triangle across the cube at z = 0.5, larger than the cube. */
+static const double plane_xyz[9] = {-1, -1, 0.5, 5, -1, 0.5, -1, 5, 0.5};
+
+static void check_cut(mtcut_mesh *mesh) {
+  mtcut_cut_options o;
+  mtcut_cut_stats st;
+  double bad[9];
+  const double start[6] = {-1, 0.5, 0.5, 2, 0.5, 0.5};
+  const double end_same[6] = {-1, 0.5, 0.5, 2, 0.5, 0.5};
+  const size_t tets = mtcut_mesh_tet_count(mesh);
+
+  memset(&o, 0, sizeof o);
+  EXPECT(mtcut_cut_options_default(NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_cut_options_default(&o), MTCUT_STATUS_INVALID_ARGUMENT); /* struct_size 0 */
+  UNTOUCHED(o.snap == 0.0);
+  o.struct_size = sizeof o;
+  EXPECT(mtcut_cut_options_default(&o), MTCUT_STATUS_OK);
+  UNTOUCHED(o.struct_size == sizeof o && o.scheme == MTCUT_CUT_SCHEME_LUT && o.snap > 0.0);
+
+  memset(&st, 0, sizeof st);
+  st.struct_size = sizeof st;
+  EXPECT(mtcut_mesh_cut(NULL, plane_xyz, 3, &st), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mesh_cut(mesh, NULL, 3, &st), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mesh_cut(mesh, plane_xyz, 2, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  EXPECT(mtcut_mesh_cut(mesh, plane_xyz, SIZE_MAX, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  memcpy(bad, plane_xyz, sizeof bad);
+  bad[4] = NAN;
+  EXPECT(mtcut_mesh_cut(mesh, bad, 3, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  memcpy(bad, plane_xyz, sizeof bad);
+  bad[3] = bad[0]; bad[4] = bad[1]; bad[5] = bad[2]; /* repeated corner */
+  EXPECT(mtcut_mesh_cut(mesh, bad, 3, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  st.struct_size = 1;
+  EXPECT(mtcut_mesh_cut(mesh, plane_xyz, 3, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  UNTOUCHED(st.tets_cut == 0);
+
+  st.struct_size = sizeof st;
+  EXPECT(mtcut_mesh_cut_with_options(NULL, plane_xyz, 3, &o, &st), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mesh_cut_with_options(mesh, NULL, 3, &o, &st), MTCUT_STATUS_NULL_ARGUMENT);
+  o.scheme = 2;
+  EXPECT(mtcut_mesh_cut_with_options(mesh, plane_xyz, 3, &o, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  o.scheme = 0xFFFFFFFFu;
+  EXPECT(mtcut_mesh_cut_with_options(mesh, plane_xyz, 3, &o, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  o.scheme = MTCUT_CUT_SCHEME_LUT;
+  o.snap = 0.3;
+  EXPECT(mtcut_mesh_cut_with_options(mesh, plane_xyz, 3, &o, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  o.snap = NAN;
+  EXPECT(mtcut_mesh_cut_with_options(mesh, plane_xyz, 3, &o, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  o.snap = 0.2;
+  o.face_point_margin = -1.0;
+  EXPECT(mtcut_mesh_cut_with_options(mesh, plane_xyz, 3, &o, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  o.face_point_margin = 0.5;
+  o.struct_size = sizeof o + 8;
+  EXPECT(mtcut_mesh_cut_with_options(mesh, plane_xyz, 3, &o, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  o.struct_size = sizeof o;
+  UNTOUCHED(st.tets_cut == 0);
+
+  EXPECT(mtcut_mesh_scalpel_sweep(NULL, start, end_same, NULL, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mesh_scalpel_sweep(mesh, NULL, end_same, NULL, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mesh_scalpel_sweep(mesh, start, NULL, NULL, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  /* A blade that does not move sweeps nothing. */
+  EXPECT(mtcut_mesh_scalpel_sweep(mesh, start, end_same, &o, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  o.scheme = 7;
+  EXPECT(mtcut_mesh_scalpel_sweep(mesh, start, end_same, &o, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  UNTOUCHED(st.tets_cut == 0);
+  UNTOUCHED(mtcut_mesh_tet_count(mesh) == tets); /* no refused cut changed the mesh */
+}
+
+static int cancel_at_once(void *user, double fraction) {
+  (void)fraction;
+  ++*(int *)user;
+  return 1;
+}
+
+static void check_mt(const mtcut_mesh *mesh, const char *dir) {
+  mtcut_mt *mt_sentinel = (mtcut_mt *)&failures;
+  mtcut_mt *mt = mt_sentinel, *good = NULL;
+  mtcut_mesh *mesh_sentinel = (mtcut_mesh *)&failures;
+  mtcut_mesh *out = mesh_sentinel;
+  mtcut_frontier *f_sentinel = (mtcut_frontier *)&failures;
+  mtcut_frontier *frontier = f_sentinel, *good_frontier = NULL;
+  mtcut_build_options bo;
+  mtcut_extract_options eo;
+  mtcut_extract_stats es;
+  mtcut_frontier_update_stats fs;
+  mtcut_mt_stats ms;
+  char path[4096];
+  int calls = 0;
+  FILE *f;
+
+  memset(&bo, 0, sizeof bo);
+  EXPECT(mtcut_build_options_default(NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_build_options_default(&bo), MTCUT_STATUS_INVALID_ARGUMENT);
+  bo.struct_size = sizeof bo;
+  EXPECT(mtcut_build_options_default(&bo), MTCUT_STATUS_OK);
+
+  EXPECT(mtcut_mt_build(NULL, &bo, &mt), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mt_build(mesh, &bo, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  bo.error_metric = 3;
+  EXPECT(mtcut_mt_build(mesh, &bo, &mt), MTCUT_STATUS_INVALID_ARGUMENT);
+  bo.error_metric = MTCUT_ERROR_METRIC_VOLUME;
+  bo.min_quality = 2.0;
+  EXPECT(mtcut_mt_build(mesh, &bo, &mt), MTCUT_STATUS_INVALID_ARGUMENT);
+  bo.min_quality = 0.02;
+  bo.boundary_tolerance = -1.0;
+  EXPECT(mtcut_mt_build(mesh, &bo, &mt), MTCUT_STATUS_INVALID_ARGUMENT);
+  bo.boundary_tolerance = 0.005;
+  bo.feature_angle_degrees = NAN;
+  EXPECT(mtcut_mt_build(mesh, &bo, &mt), MTCUT_STATUS_INVALID_ARGUMENT);
+  bo.feature_angle_degrees = 30.0;
+  bo.struct_size = 3;
+  EXPECT(mtcut_mt_build(mesh, &bo, &mt), MTCUT_STATUS_INVALID_ARGUMENT);
+  bo.struct_size = sizeof bo;
+  bo.progress_or_null = cancel_at_once;
+  bo.user = &calls;
+  EXPECT(mtcut_mt_build(mesh, &bo, &mt), MTCUT_STATUS_CANCELLED);
+  UNTOUCHED(mt == mt_sentinel);
+  if (calls != 1) {
+    fprintf(stderr, "null_args.c:%d: the callback ran %d times, expected once\n", __LINE__, calls);
+    failures++;
+  }
+  EXPECT(mtcut_mt_build(mesh, NULL, &good), MTCUT_STATUS_OK);
+  if (good == NULL) {
+    failures++;
+    return;
+  }
+
+  path_in(path, sizeof path, dir, "cube.mt");
+  EXPECT(mtcut_mt_save(NULL, path), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mt_save(good, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  path_in(path, sizeof path, dir, "no-such-dir/cube.mt");
+  EXPECT(mtcut_mt_save(good, path), MTCUT_STATUS_IO_ERROR);
+  EXPECT(mtcut_mt_load(NULL, &mt), MTCUT_STATUS_NULL_ARGUMENT);
+  path_in(path, sizeof path, dir, "cube.mt");
+  EXPECT(mtcut_mt_load(path, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mt_load(path, &mt), MTCUT_STATUS_IO_ERROR); /* not saved: no such file */
+  path_in(path, sizeof path, dir, "bad.node"); /* written by check_files: not a model */
+  EXPECT(mtcut_mt_load(path, &mt), MTCUT_STATUS_UNSUPPORTED_FORMAT);
+  path_in(path, sizeof path, dir, "truncated.mt");
+  f = fopen(path, "wb");
+  if (f != NULL) {
+    fwrite("MTCUTMT\0\1\0\0\0", 1, 12, f);
+    fclose(f);
+  }
+  EXPECT(mtcut_mt_load(path, &mt), MTCUT_STATUS_PARSE_ERROR);
+  UNTOUCHED(mt == mt_sentinel);
+  mtcut_mt_free(NULL); /* allowed: nothing happens */
+
+  memset(&ms, 0, sizeof ms);
+  ms.struct_size = sizeof ms;
+  EXPECT(mtcut_mt_statistics(NULL, &ms), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mt_statistics(good, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  ms.struct_size = sizeof ms * 2;
+  EXPECT(mtcut_mt_statistics(good, &ms), MTCUT_STATUS_INVALID_ARGUMENT);
+  UNTOUCHED(ms.vertices == 0);
+
+  EXPECT(mtcut_mt_extract_threshold(NULL, 0.0, &out), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mt_extract_threshold(good, 0.0, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mt_extract_threshold(good, -1.0, &out), MTCUT_STATUS_INVALID_ARGUMENT);
+  EXPECT(mtcut_mt_extract_threshold(good, NAN, &out), MTCUT_STATUS_INVALID_ARGUMENT);
+  UNTOUCHED(out == mesh_sentinel);
+
+  memset(&eo, 0, sizeof eo);
+  EXPECT(mtcut_extract_options_default(NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_extract_options_default(&eo), MTCUT_STATUS_INVALID_ARGUMENT);
+  eo.struct_size = sizeof eo;
+  EXPECT(mtcut_extract_options_default(&eo), MTCUT_STATUS_OK);
+  memset(&es, 0, sizeof es);
+  es.struct_size = sizeof es;
+  EXPECT(mtcut_mt_extract(NULL, &eo, &es, &out), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mt_extract(good, &eo, &es, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  eo.focus = 3;
+  EXPECT(mtcut_mt_extract(good, &eo, &es, &out), MTCUT_STATUS_INVALID_ARGUMENT);
+  eo.focus = MTCUT_FOCUS_SPHERE;
+  eo.focus_radius = -1.0;
+  EXPECT(mtcut_mt_extract(good, &eo, &es, &out), MTCUT_STATUS_INVALID_ARGUMENT);
+  eo.focus_radius = 0.5;
+  eo.focus_center[1] = INFINITY;
+  EXPECT(mtcut_mt_extract(good, &eo, &es, &out), MTCUT_STATUS_INVALID_ARGUMENT);
+  eo.focus_center[1] = 0.0;
+  eo.focus_threshold = -2.0;
+  EXPECT(mtcut_mt_extract(good, &eo, &es, &out), MTCUT_STATUS_INVALID_ARGUMENT);
+  eo.focus_threshold = 0.0;
+  eo.focus = MTCUT_FOCUS_BOX;
+  eo.focus_min[0] = 1.0; /* min above max */
+  EXPECT(mtcut_mt_extract(good, &eo, &es, &out), MTCUT_STATUS_INVALID_ARGUMENT);
+  eo.focus = MTCUT_FOCUS_NONE;
+  eo.threshold = -1.0;
+  EXPECT(mtcut_mt_extract(good, &eo, &es, &out), MTCUT_STATUS_INVALID_ARGUMENT);
+  eo.threshold = 0.0;
+  es.struct_size = 0;
+  EXPECT(mtcut_mt_extract(good, &eo, &es, &out), MTCUT_STATUS_INVALID_ARGUMENT);
+  es.struct_size = sizeof es;
+  UNTOUCHED(out == mesh_sentinel && es.tets == 0);
+
+  EXPECT(mtcut_frontier_new(NULL, &eo, &frontier), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_frontier_new(good, &eo, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  eo.threshold = NAN;
+  EXPECT(mtcut_frontier_new(good, &eo, &frontier), MTCUT_STATUS_INVALID_ARGUMENT);
+  eo.threshold = 0.0;
+  UNTOUCHED(frontier == f_sentinel);
+  EXPECT(mtcut_frontier_new(good, NULL, &good_frontier), MTCUT_STATUS_OK);
+  memset(&fs, 0, sizeof fs);
+  fs.struct_size = sizeof fs;
+  EXPECT(mtcut_frontier_update(NULL, &eo, &fs), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_frontier_update(good_frontier, NULL, &fs), MTCUT_STATUS_NULL_ARGUMENT);
+  eo.budget = 1;
+  eo.focus = 99;
+  EXPECT(mtcut_frontier_update(good_frontier, &eo, &fs), MTCUT_STATUS_INVALID_ARGUMENT);
+  eo.focus = MTCUT_FOCUS_NONE;
+  fs.struct_size = 5;
+  EXPECT(mtcut_frontier_update(good_frontier, &eo, &fs), MTCUT_STATUS_INVALID_ARGUMENT);
+  UNTOUCHED(fs.tets == 0);
+  /* Every refusal above left the frontier at the input mesh. */
+  UNTOUCHED(mtcut_frontier_tet_count(good_frontier) == mtcut_mesh_tet_count(mesh));
+  EXPECT_ZERO(mtcut_frontier_tet_count(NULL));
+  EXPECT(mtcut_frontier_mesh(NULL, &out), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_frontier_mesh(good_frontier, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  UNTOUCHED(out == mesh_sentinel);
+  mtcut_frontier_free(NULL); /* allowed: nothing happens */
+  mtcut_frontier_free(good_frontier);
+  mtcut_mt_free(good);
+}
+
 int main(int argc, char **argv) {
   mtcut_mesh *mesh = NULL;
   if (argc != 2) {
@@ -354,6 +577,8 @@ int main(int argc, char **argv) {
   check_arrays_out(mesh);
   check_measures(mesh);
   check_attributes(mesh);
+  check_mt(mesh, argv[1]);
+  check_cut(mesh);
   mtcut_mesh_free(mesh);
   if (failures > 0) {
     fprintf(stderr, "null_args: %d failures\n", failures);

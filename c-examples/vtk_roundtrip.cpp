@@ -1,11 +1,15 @@
 // vtk_roundtrip: mtcut inside a VTK 9.1 pipeline. Reads a .vtu with VTK's reader, hands
 // its points, tets, point data and cell data to mtcut as arrays, checks and measures the
-// mesh there, turns mtcut's mesh back into a vtkUnstructuredGrid with its point and cell
-// data, writes it with VTK's writer, and reads that file back with VTK to check that
-// nothing was lost: counts, every array, and the volume VTK computes against mtcut's.
+// mesh there, with --cut cuts it through its middle, turns mtcut's mesh back into a
+// vtkUnstructuredGrid with its point and cell data, writes it with VTK's writer, and reads
+// that file back with VTK to check that nothing was lost: counts, every array (values too
+// when not cut), and the volume VTK computes against mtcut's. With --cut it also writes
+// the JSON sidecar OUT.vtu.json (sidecar.h) for the ParaView check.
 //
-// Usage: vtk_roundtrip IN.vtu OUT.vtu
+// Usage: vtk_roundtrip IN.vtu OUT.vtu [--cut]
 #include <mtcut.h>
+
+#include "sidecar.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -24,6 +28,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -180,11 +185,57 @@ void same_arrays(vtkFieldData *a, vtkFieldData *b, size_t count, const char *wha
   }
 }
 
+// After a cut: every array of the original (`b`) is in the output (`a`) with the same
+// components and one row per element of the output; the output has `extra` more arrays
+// (the cut's own column).
+void same_names(vtkFieldData *a, vtkFieldData *b, vtkIdType rows, int extra, const char *what) {
+  if (a->GetNumberOfArrays() != b->GetNumberOfArrays() + extra) {
+    throw std::runtime_error(std::string(what) + ": another number of arrays after the cut");
+  }
+  for (int k = 0; k < b->GetNumberOfArrays(); k++) {
+    vtkDataArray *y = vtkDataArray::SafeDownCast(b->GetAbstractArray(k));
+    vtkDataArray *x = y ? a->GetArray(y->GetName()) : nullptr;
+    if (!x || x->GetNumberOfComponents() != y->GetNumberOfComponents() ||
+        x->GetNumberOfTuples() != rows) {
+      throw std::runtime_error(std::string(what) + ": array " + std::to_string(k) +
+                               " lost or resized by the cut");
+    }
+  }
+}
+
+// Cuts the mesh through the middle of its bounding box by a slightly tilted plane (a
+// square larger than the mesh), printing the statistics.
+void cut_through_middle(mtcut_mesh *mesh) {
+  double lo[3], hi[3];
+  check(mtcut_mesh_bounding_box(mesh, lo, hi), "bounding box");
+  const double c[3] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
+  const double r = (hi[0] - lo[0]) + (hi[1] - lo[1]) + (hi[2] - lo[2]);
+  // Corners c + a u + b v, with u along x and v along y tilted a little towards z.
+  const double u[3] = {1, 0, 0.1}, v[3] = {0, 1, 0.05};
+  const double ab[4][2] = {{-r, -r}, {r, -r}, {r, r}, {-r, r}};
+  double square[12];
+  for (int k = 0; k < 4; k++) {
+    for (int d = 0; d < 3; d++) square[3 * k + d] = c[d] + ab[k][0] * u[d] + ab[k][1] * v[d];
+  }
+  mtcut_cut_stats stats;
+  std::memset(&stats, 0, sizeof stats);
+  stats.struct_size = sizeof stats;
+  check(mtcut_mesh_cut(mesh, square, 4, &stats), "cut");
+  std::printf("cut: %zu tets tested, %zu cut, %zu created, %zu vertices added; %zu tets, %zu "
+              "component(s); %.3f ms\n",
+              stats.tets_tested, stats.tets_cut, stats.tets_created, stats.vertices_added,
+              stats.tets_after, stats.components, 1e3 * stats.seconds_cut);
+  if (stats.tets_cut == 0 || stats.components < 2) {
+    throw std::runtime_error("the cut through the middle did not separate the mesh");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: %s IN.vtu OUT.vtu\n", argv[0]);
+  const bool cut = argc == 4 && std::strcmp(argv[3], "--cut") == 0;
+  if (argc != 3 && !cut) {
+    std::fprintf(stderr, "usage: %s IN.vtu OUT.vtu [--cut]\n", argv[0]);
     return 2;
   }
   try {
@@ -201,6 +252,16 @@ int main(int argc, char **argv) {
                 input->GetPointData()->GetNumberOfArrays(),
                 input->GetCellData()->GetNumberOfArrays(), message, volume);
     if (!valid) throw std::runtime_error("mtcut finds the mesh invalid");
+    if (cut) {
+      cut_through_middle(mesh.get());
+      check(mtcut_mesh_validate(mesh.get(), &valid, message, sizeof message, nullptr), "validate");
+      double after = 0.0;
+      check(mtcut_mesh_volume(mesh.get(), &after), "volume");
+      if (!valid || std::fabs(after - volume) > 1e-9 * volume) {
+        throw std::runtime_error(std::string("after the cut: ") + message);
+      }
+      volume = after;
+    }
 
     vtkSmartPointer<vtkUnstructuredGrid> output = to_vtk(mesh.get());
     vtkNew<vtkXMLUnstructuredGridWriter> writer;
@@ -223,9 +284,18 @@ int main(int argc, char **argv) {
     size_t vertex_columns = 0, tet_columns = 0;
     check(mtcut_mesh_attribute_count(mesh.get(), MTCUT_LOCATION_VERTEX, &vertex_columns), "count");
     check(mtcut_mesh_attribute_count(mesh.get(), MTCUT_LOCATION_TET, &tet_columns), "count");
-    same_arrays(back->GetPointData(), input->GetPointData(), vertex_columns, "point data");
-    same_arrays(back->GetCellData(), input->GetCellData(), tet_columns, "cell data");
-    std::printf("round trip through mtcut: counts, volume and every array agree\n");
+    if (cut) {
+      same_names(back->GetPointData(), input->GetPointData(), back->GetNumberOfPoints(), 0,
+                 "point data");
+      same_names(back->GetCellData(), input->GetCellData(), back->GetNumberOfCells(), 1,
+                 "cell data");
+      mtcut_example_write_sidecar(mesh.get(), argv[2]);
+      std::printf("cut through mtcut: counts, volume and arrays agree\n");
+    } else {
+      same_arrays(back->GetPointData(), input->GetPointData(), vertex_columns, "point data");
+      same_arrays(back->GetCellData(), input->GetCellData(), tet_columns, "cell data");
+      std::printf("round trip through mtcut: counts, volume and every array agree\n");
+    }
   } catch (const std::exception &e) {
     std::fprintf(stderr, "vtk_roundtrip: %s\n", e.what());
     return 1;

@@ -3,9 +3,10 @@
  *
  * Conventions (every function follows them):
  *
- * Handles. Objects are opaque handles (mtcut_mesh). A function that creates one writes it
- * to an `out` argument and the caller owns it until it calls the matching mtcut_*_free
- * (which accepts NULL). Arrays and strings passed in are copied; the caller keeps them.
+ * Handles. Objects are opaque handles (mtcut_mesh, mtcut_mt, mtcut_frontier). A function
+ * that creates one writes it to an `out` argument and the caller owns it until it calls
+ * the matching mtcut_*_free (which accepts NULL). Arrays and strings passed in are copied;
+ * the caller keeps them.
  *
  * Status. Every function that can fail returns an mtcut_status: MTCUT_STATUS_OK (0) or an
  * MTCUT_STATUS_* code whose numeric value never changes. mtcut_status_message(status)
@@ -27,16 +28,17 @@
  * asks for the length.
  *
  * Structs that grow. A struct passed by pointer whose fields may be added to (statistics
- * out, like mtcut_quality; option structs in, with the multiresolution and cut API) starts
+ * out, like mtcut_quality; option structs in, like mtcut_build_options) starts
  * with `size_t struct_size`, which the caller sets to sizeof(the struct) before the call.
  * Within a major version fields are only appended, never removed or reordered, and the
  * library reads or writes only the fields within struct_size: a program compiled against
  * an older header works with a newer library (statistics it does not know are not
  * written; options it does not know keep their defaults). A struct_size smaller than the
  * struct's first version, or larger than this library knows (a program compiled against a
- * newer header than the library it runs with), gives MTCUT_STATUS_INVALID_ARGUMENT. Option
- * structs will come with an mtcut_<name>_default(struct *) function that fills the fields
- * within struct_size with their documented defaults.
+ * newer header than the library it runs with), gives MTCUT_STATUS_INVALID_ARGUMENT. Each
+ * option struct has an mtcut_<name>_default(struct *) function that fills the fields
+ * within struct_size with their documented defaults: set struct_size, call it, then change
+ * the fields you need. Functions taking `options_or_null` use the defaults for NULL.
  *
  * Threads. Functions taking a const handle may run on one object from several threads at
  * once; functions taking a non-const handle need exclusive access to it. Different
@@ -58,13 +60,6 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
-
-/**
- * A Multi-Tessellation: a multiresolution model of a tetrahedral mesh (opaque). Declared
- * so that host code can already hold pointers to it; the functions that build, extract,
- * cut and free it come with the multiresolution API.
- */
-typedef struct mtcut_mt mtcut_mt;
 
 #define MTCUT_STRINGIFY_(x) #x
 #define MTCUT_STRINGIFY(x) MTCUT_STRINGIFY_(x)
@@ -95,6 +90,14 @@ typedef struct mtcut_mt mtcut_mt;
 #define MTCUT_MAX_COMPONENTS 9
 
 /**
+ * An extraction kept up to date incrementally (opaque): moving its focus or thresholds
+ * touches only the fragments whose decision changes, and gives exactly the mesh a fresh
+ * extraction would. Made by `mtcut_frontier_new`, released with `mtcut_frontier_free`.
+ * It shares the model (read-only), which stays alive while the frontier does.
+ */
+typedef struct mtcut_frontier mtcut_frontier;
+
+/**
  * A tetrahedral mesh (opaque): vertex positions, tets as four vertex indices each
  * (positively oriented: `(b-a) . ((c-a) x (d-a)) > 0`, VTK's convention), and named
  * per-vertex and per-tet attribute columns of doubles. Every `mtcut_mesh` is valid when
@@ -104,6 +107,16 @@ typedef struct mtcut_mt mtcut_mt;
  * from several threads at once; the others need exclusive access.
  */
 typedef struct mtcut_mesh mtcut_mesh;
+
+/**
+ * A Multi-Tessellation (opaque): every level of detail of a tet mesh and the DAG of
+ * fragments (simplification steps) saying how they fit together (paper section 2). Made
+ * by `mtcut_mt_build` or `mtcut_mt_load`, released with `mtcut_mt_free`. Extracted meshes
+ * are independent `mtcut_mesh` handles with the cell data "mt_fragment", "mt_error" and
+ * "mt_level" (the fragment that created each tet, its error and DAG level) and the point
+ * data "mt_vertex" (each vertex's id in the model), besides the input's own columns.
+ */
+typedef struct mtcut_mt mtcut_mt;
 
 /**
  * The result of every fallible mtcut function: `MTCUT_STATUS_OK` (0) or one of the
@@ -165,6 +178,341 @@ typedef struct mtcut_quality {
  * with `MTCUT_STATUS_INVALID_ARGUMENT`).
  */
 typedef uint32_t mtcut_location;
+
+/**
+ * How cut tets are replaced (a `uint32_t`; other values are refused with
+ * `MTCUT_STATUS_INVALID_ARGUMENT`).
+ */
+typedef uint32_t mtcut_cut_scheme;
+
+/**
+ * Options of a cut. A versioned struct: set `struct_size` to `sizeof(mtcut_cut_options)`
+ * and fill it with `mtcut_cut_options_default` before changing fields.
+ */
+typedef struct mtcut_cut_options {
+  /**
+   * Set by the caller to `sizeof(mtcut_cut_options)`.
+   */
+  size_t struct_size;
+  /**
+   * An `MTCUT_CUT_SCHEME_*` value. Default `MTCUT_CUT_SCHEME_LUT`.
+   */
+  mtcut_cut_scheme scheme;
+  /**
+   * Snapping tolerance, relative to each vertex's longest incident edge, in [0, 0.25]: a
+   * vertex closer than that to the cut is taken to lie on it, so every cut point divides
+   * its edge at a parameter in (snap, 1 - snap) and no child is a sliver. The cut
+   * surface may then pass up to snap x edge length off the plane; no vertex moves.
+   * Default 0.2.
+   */
+  double snap;
+  /**
+   * Crack tips inside a face stay at least this fraction of their segment from its
+   * ends, in [0, 0.5]. Default 0.5 (the middle: best element quality).
+   */
+  double face_point_margin;
+  /**
+   * Nonzero: count the connected components after the cut (a pass over the whole
+   * mesh), reported in `mtcut_cut_stats.components`. Default 1.
+   */
+  uint32_t count_components;
+} mtcut_cut_options;
+
+/**
+ * What a cut did. A versioned struct: set `struct_size` to `sizeof(mtcut_cut_stats)`
+ * before the call. Times are wall-clock seconds.
+ */
+typedef struct mtcut_cut_stats {
+  /**
+   * Set by the caller to `sizeof(mtcut_cut_stats)`; never written by the library.
+   */
+  size_t struct_size;
+  /**
+   * Tets whose vertices were classified against the cut (reached through the tets'
+   * bounding-box hierarchy).
+   */
+  size_t tets_tested;
+  /**
+   * Tets the cut's plane crosses or that touch the cut at a vertex.
+   */
+  size_t tets_candidate;
+  /**
+   * Tets replaced.
+   */
+  size_t tets_cut;
+  /**
+   * Tets created to replace them.
+   */
+  size_t tets_created;
+  /**
+   * Vertices added: cut points (two copies per cut edge), crack tips inside faces, and
+   * copies of vertices the cut passes through.
+   */
+  size_t vertices_added;
+  /**
+   * Cut-point copies among them.
+   */
+  size_t cut_points;
+  /**
+   * Crack tips inside faces among them.
+   */
+  size_t face_points;
+  /**
+   * Copies of vertices the cut passes through among them.
+   */
+  size_t vertex_copies;
+  /**
+   * Distinct vertices snapped onto the cut.
+   */
+  size_t vertices_snapped;
+  /**
+   * Tets and vertices of the mesh after the cut.
+   */
+  size_t tets_after;
+  size_t vertices_after;
+  /**
+   * Connected components after the cut; `SIZE_MAX` when they were not counted
+   * (`mtcut_cut_options.count_components` 0).
+   */
+  size_t components;
+  /**
+   * Building the tets' hierarchy and the vertices' scales (each cut call does it).
+   */
+  double seconds_build;
+  /**
+   * The cut itself: finding the candidates, classifying, splitting, separating.
+   */
+  double seconds_cut;
+  /**
+   * Counting the components.
+   */
+  double seconds_components;
+} mtcut_cut_stats;
+
+/**
+ * The per-tet error a build ranks simplification steps by (a `uint32_t`; other values are
+ * refused with `MTCUT_STATUS_INVALID_ARGUMENT`).
+ */
+typedef uint32_t mtcut_error_metric;
+
+/**
+ * A build's progress callback: called about once per round of simplification with the
+ * estimated fraction of the work done (0 to 1, never decreasing) and the `user` pointer
+ * of the options. Returning nonzero cancels the build (`MTCUT_STATUS_CANCELLED`, no
+ * model made). It runs on the thread that called `mtcut_mt_build` and must return
+ * normally (no C++ exception, no longjmp across mtcut).
+ */
+typedef int (*mtcut_progress_callback)(void *user,
+                                       double fraction);
+
+/**
+ * How to build a Multi-Tessellation. A versioned struct: set `struct_size` to
+ * `sizeof(mtcut_build_options)` and fill it with `mtcut_build_options_default` before
+ * changing fields.
+ */
+typedef struct mtcut_build_options {
+  /**
+   * Set by the caller to `sizeof(mtcut_build_options)`.
+   */
+  size_t struct_size;
+  /**
+   * An `MTCUT_ERROR_METRIC_*` value. Default `MTCUT_ERROR_METRIC_VOLUME`.
+   */
+  mtcut_error_metric error_metric;
+  /**
+   * How far the boundary of any level may stray from the input's boundary, relative to
+   * the input's bounding-box diagonal (finite, >= 0). Default 0.005.
+   */
+  double boundary_tolerance;
+  /**
+   * Nonzero: keep boundary feature edges (as lines) and corners. Default 1.
+   */
+  uint32_t preserve_features;
+  /**
+   * Dihedral angle in degrees (0 to 180) above which a boundary edge is a feature; no
+   * boundary face turns by more than it in one step. Default 30.
+   */
+  double feature_angle_degrees;
+  /**
+   * Mean-ratio quality floor (0 to 1) of the tets a step may create. Default 0.02.
+   */
+  double min_quality;
+  /**
+   * Stop simplifying when the mesh has at most this many tets; 0: simplify while a
+   * legal step is left. Default 0.
+   */
+  size_t target_tets;
+  /**
+   * Progress callback, or NULL. Default NULL.
+   */
+  mtcut_progress_callback progress_or_null;
+  /**
+   * Handed to the callback as is. Default NULL.
+   */
+  void *user;
+} mtcut_build_options;
+
+/**
+ * Numbers describing a model. A versioned struct: set `struct_size` to
+ * `sizeof(mtcut_mt_stats)` before the call.
+ */
+typedef struct mtcut_mt_stats {
+  /**
+   * Set by the caller to `sizeof(mtcut_mt_stats)`; never written by the library.
+   */
+  size_t struct_size;
+  /**
+   * Vertices of the model (those of the input mesh).
+   */
+  size_t vertices;
+  /**
+   * Tets of every level together.
+   */
+  size_t tets;
+  /**
+   * Tets of the input (finest) and of the coarsest mesh.
+   */
+  size_t input_tets;
+  size_t coarsest_tets;
+  /**
+   * Fragments: the simplification steps, plus one root and one drain per component.
+   */
+  size_t fragments;
+  /**
+   * Length of the longest chain of dependent fragments.
+   */
+  size_t dag_depth;
+  /**
+   * Independent models held (connected parts of the input).
+   */
+  size_t components;
+  /**
+   * Smallest and largest error of a simplification step: thresholds below the first
+   * extract the input mesh, at or above the second the coarsest one (0 and 0 when no
+   * step was possible).
+   */
+  double min_error;
+  double max_error;
+  /**
+   * Memory the model holds, in bytes.
+   */
+  size_t heap_bytes;
+} mtcut_mt_stats;
+
+/**
+ * Where an extraction uses its focus threshold (a `uint32_t`; other values are refused
+ * with `MTCUT_STATUS_INVALID_ARGUMENT`).
+ */
+typedef uint32_t mtcut_focus_kind;
+
+/**
+ * What to extract from a model. A versioned struct: set `struct_size` to
+ * `sizeof(mtcut_extract_options)` and fill it with `mtcut_extract_options_default` before
+ * changing fields. The defaults extract the finest (input) mesh.
+ *
+ * Each fragment (simplification step) is applied when its error is at most the threshold
+ * that applies to it: `focus_threshold` if its box meets the focus region, `threshold`
+ * elsewhere. Errors grow along the DAG, so this is a consistent mesh: the coarsest whose
+ * tets all have error at most their threshold.
+ */
+typedef struct mtcut_extract_options {
+  /**
+   * Set by the caller to `sizeof(mtcut_extract_options)`.
+   */
+  size_t struct_size;
+  /**
+   * Uniform error threshold (>= 0; infinity gives the coarsest mesh). Default 0.
+   */
+  double threshold;
+  /**
+   * An `MTCUT_FOCUS_*` value. Default `MTCUT_FOCUS_NONE`.
+   */
+  mtcut_focus_kind focus;
+  /**
+   * Error threshold inside the focus region (>= 0), usually below `threshold`.
+   * Default 0.
+   */
+  double focus_threshold;
+  /**
+   * Sphere focus: centre (finite) and radius (finite, >= 0). Default the origin, 0.
+   */
+  double focus_center[3];
+  double focus_radius;
+  /**
+   * Box focus: corners (finite, min <= max on each axis). Default the origin twice.
+   */
+  double focus_min[3];
+  double focus_max[3];
+  /**
+   * At most this many tets (fragments are refined in decreasing order of need while
+   * the mesh stays within it, never beyond what the thresholds ask); 0: no budget. When
+   * even the coarsest mesh is larger, it is returned and `budget_met` says so.
+   * Default 0.
+   */
+  size_t budget;
+} mtcut_extract_options;
+
+/**
+ * What an extraction gave. A versioned struct: set `struct_size` to
+ * `sizeof(mtcut_extract_stats)` before the call.
+ */
+typedef struct mtcut_extract_stats {
+  /**
+   * Set by the caller to `sizeof(mtcut_extract_stats)`; never written by the library.
+   */
+  size_t struct_size;
+  size_t tets;
+  size_t vertices;
+  /**
+   * Fragments not applied (drains included).
+   */
+  size_t refined_fragments;
+  /**
+   * Largest error of the fragments that created the extracted tets.
+   */
+  double max_error;
+  /**
+   * 0 when even the coarsest mesh exceeds the budget; 1 otherwise.
+   */
+  uint32_t budget_met;
+  /**
+   * Wall-clock time of the extraction.
+   */
+  double seconds;
+} mtcut_extract_stats;
+
+/**
+ * What a frontier update changed. A versioned struct: set `struct_size` to
+ * `sizeof(mtcut_frontier_update_stats)` before the call.
+ */
+typedef struct mtcut_frontier_update_stats {
+  /**
+   * Set by the caller; never written by the library.
+   */
+  size_t struct_size;
+  /**
+   * Fragments examined because their threshold may have changed.
+   */
+  size_t candidates;
+  /**
+   * Fragments un-applied (the mesh got finer there) and applied (coarser).
+   */
+  size_t refined;
+  size_t coarsened;
+  /**
+   * Tets that entered and left the mesh.
+   */
+  size_t tets_added;
+  size_t tets_removed;
+  /**
+   * Tets in the mesh after the update.
+   */
+  size_t tets;
+  /**
+   * Wall-clock time of the update.
+   */
+  double seconds;
+} mtcut_frontier_update_stats;
 
 /**
  * Success.
@@ -242,6 +590,47 @@ typedef uint32_t mtcut_location;
  * One row per tet (VTK's cell data).
  */
 #define MTCUT_LOCATION_TET 1
+
+/**
+ * The paper's look-up tables (section 4.2): a minimal conforming tetrahedralization of
+ * each cut tet. The default.
+ */
+#define MTCUT_CUT_SCHEME_LUT 0
+
+/**
+ * The 1:17 scheme of Bielser et al. (1999), the paper's baseline: 17 tets per cut tet.
+ */
+#define MTCUT_CUT_SCHEME_BIELSER17 1
+
+/**
+ * The volume a collapse changes, relative to the local size (the paper's). The default.
+ */
+#define MTCUT_ERROR_METRIC_VOLUME 0
+
+/**
+ * The distance of the boundary to the input's boundary surface, plus a small size term.
+ */
+#define MTCUT_ERROR_METRIC_BOUNDARY 1
+
+/**
+ * One minus the mean-ratio quality of the created tets.
+ */
+#define MTCUT_ERROR_METRIC_QUALITY 2
+
+/**
+ * No focus: the uniform threshold everywhere.
+ */
+#define MTCUT_FOCUS_NONE 0
+
+/**
+ * A sphere: `focus_center`, `focus_radius`.
+ */
+#define MTCUT_FOCUS_SPHERE 1
+
+/**
+ * An axis-aligned box: `focus_min`, `focus_max`.
+ */
+#define MTCUT_FOCUS_BOX 2
 
 #ifdef __cplusplus
 extern "C" {
@@ -583,6 +972,234 @@ mtcut_status mtcut_mesh_copy_attribute(const struct mtcut_mesh *mesh,
 mtcut_status mtcut_mesh_remove_attribute(struct mtcut_mesh *mesh,
                                          mtcut_location location,
                                          const char *name);
+
+/**
+ * Fills the fields of `*options` within `options->struct_size` (which the caller sets
+ * first) with their defaults.
+ *
+ * # Safety
+ * `options` must be a writable `mtcut_cut_options` whose `struct_size` is set.
+ */
+mtcut_status mtcut_cut_options_default(struct mtcut_cut_options *options);
+
+/**
+ * Cuts `mesh` with the planar convex polygon whose `n_points` corners, in order around
+ * it, are at `polygon_xyz` (x, y, z of each), with the default options: every tet the
+ * polygon crosses is replaced by tets it does not cross, and the two sides of the cut
+ * get their own copies of the vertices on it (the mesh may fall apart into several
+ * components: `mtcut_mesh_component_count`). The polygon must have at least 3 distinct,
+ * finite corners, be planar (within 1e-6 of its diameter) and convex; otherwise
+ * `MTCUT_STATUS_INVALID_ARGUMENT` says which corner is wrong and the mesh is unchanged.
+ * Attribute rows of new vertices are interpolated; new tets inherit their parent's rows,
+ * and the tet column "mtcut:cut" numbers the cut that created each tet (0: none).
+ * `stats_or_null`, if given (with `struct_size` set), receives the statistics.
+ *
+ * # Safety
+ * `mesh` must be a live mesh handle used by no other thread during the call;
+ * `polygon_xyz` readable for `3 x n_points` doubles; a non-NULL `stats_or_null` writable.
+ */
+mtcut_status mtcut_mesh_cut(struct mtcut_mesh *mesh,
+                            const double *polygon_xyz,
+                            size_t n_points,
+                            struct mtcut_cut_stats *stats_or_null);
+
+/**
+ * `mtcut_mesh_cut` with options (`options_or_null` NULL: the defaults).
+ *
+ * # Safety
+ * As `mtcut_mesh_cut`; a non-NULL `options_or_null` must be a readable
+ * `mtcut_cut_options` with `struct_size` set.
+ */
+mtcut_status mtcut_mesh_cut_with_options(struct mtcut_mesh *mesh,
+                                         const double *polygon_xyz,
+                                         size_t n_points,
+                                         const struct mtcut_cut_options *options_or_null,
+                                         struct mtcut_cut_stats *stats_or_null);
+
+/**
+ * Cuts `mesh` along the surface a straight blade sweeps in one time step: the segment
+ * from `start_xyz[0..3]` to `start_xyz[3..6]` at the start of the step, and from
+ * `end_xyz[0..3]` to `end_xyz[3..6]` at its end (corresponding ends). The swept
+ * quadrilateral is cut as one polygon when it is planar and convex, else as two
+ * triangles (along its shorter diagonal); an end that does not move makes it one
+ * triangle. A blade that does not move, or a sweep that folds over itself, gives
+ * `MTCUT_STATUS_INVALID_ARGUMENT` with the mesh unchanged. Options and statistics as in
+ * `mtcut_mesh_cut_with_options`; for two triangles the counts and times add up. (The one
+ * failure found after the first triangle was applied: the second would make the mesh
+ * exceed 2^31 vertices or tets; the mesh then keeps the first triangle's cut.)
+ *
+ * # Safety
+ * `mesh` must be a live mesh handle used by no other thread during the call; `start_xyz`
+ * and `end_xyz` readable for 6 doubles each; a non-NULL `options_or_null` a readable
+ * `mtcut_cut_options` with `struct_size` set; a non-NULL `stats_or_null` writable.
+ */
+mtcut_status mtcut_mesh_scalpel_sweep(struct mtcut_mesh *mesh,
+                                      const double *start_xyz,
+                                      const double *end_xyz,
+                                      const struct mtcut_cut_options *options_or_null,
+                                      struct mtcut_cut_stats *stats_or_null);
+
+/**
+ * Fills the fields of `*options` within `options->struct_size` (which the caller sets
+ * first) with their defaults.
+ *
+ * # Safety
+ * `options` must be a writable `mtcut_build_options` whose `struct_size` is set.
+ */
+mtcut_status mtcut_build_options_default(struct mtcut_build_options *options);
+
+/**
+ * Builds the Multi-Tessellation of `mesh` by simplification (paper section 2), with
+ * `options_or_null` (NULL: the defaults). The mesh's vertex and tet attribute columns
+ * are kept by the model and appear in extracted meshes. Errors:
+ * `MTCUT_STATUS_INVALID_ARGUMENT` (an option out of range, named in the message),
+ * `MTCUT_STATUS_INVALID_MESH` (a mesh moved into an invalid state by
+ * `mtcut_mesh_set_vertices`), `MTCUT_STATUS_CANCELLED` (the progress callback returned
+ * nonzero). On success `*out` receives a new model to free with `mtcut_mt_free`.
+ *
+ * # Safety
+ * `mesh` must be a live mesh handle; a non-NULL `options_or_null` a readable
+ * `mtcut_build_options` with `struct_size` set (and a valid callback, if any); `out` a
+ * writable pointer.
+ */
+mtcut_status mtcut_mt_build(const struct mtcut_mesh *mesh,
+                            const struct mtcut_build_options *options_or_null,
+                            struct mtcut_mt **out);
+
+/**
+ * Writes the model to `path` in mtcut's binary `.mt` format (checksummed; any file name).
+ * `MTCUT_STATUS_IO_ERROR` when the file cannot be written.
+ *
+ * # Safety
+ * `mt` must be a live model handle; `path` a NUL-terminated string.
+ */
+mtcut_status mtcut_mt_save(const struct mtcut_mt *mt,
+                           const char *path);
+
+/**
+ * Reads a model written by `mtcut_mt_save`. Errors: `MTCUT_STATUS_IO_ERROR` (cannot
+ * read), `MTCUT_STATUS_UNSUPPORTED_FORMAT` (not an `.mt` file, or a format version this
+ * library does not read), `MTCUT_STATUS_PARSE_ERROR` (truncated or corrupt: the checksum
+ * or the content's consistency fails). On success `*out` receives a new model.
+ *
+ * # Safety
+ * `path` must be a NUL-terminated string; `out` a writable pointer.
+ */
+mtcut_status mtcut_mt_load(const char *path,
+                           struct mtcut_mt **out);
+
+/**
+ * Releases a model. NULL is allowed (nothing happens). Frontiers made from it stay
+ * usable (they share the model). Using the handle afterwards, or freeing it twice, is
+ * undefined behaviour.
+ *
+ * # Safety
+ * A non-NULL `mt` must be a live handle from this library, not used after the call.
+ */
+void mtcut_mt_free(struct mtcut_mt *mt);
+
+/**
+ * The model's statistics: fills the fields of `*stats` within `stats->struct_size`.
+ *
+ * # Safety
+ * `mt` must be a live model handle; `stats` a writable `mtcut_mt_stats` whose
+ * `struct_size` is set.
+ */
+mtcut_status mtcut_mt_statistics(const struct mtcut_mt *mt,
+                                 struct mtcut_mt_stats *stats);
+
+/**
+ * Fills the fields of `*options` within `options->struct_size` (which the caller sets
+ * first) with their defaults.
+ *
+ * # Safety
+ * `options` must be a writable `mtcut_extract_options` whose `struct_size` is set.
+ */
+mtcut_status mtcut_extract_options_default(struct mtcut_extract_options *options);
+
+/**
+ * The mesh at uniform error `threshold` (>= 0): every simplification step of error at
+ * most `threshold` applied. 0 gives the input mesh, `INFINITY` the coarsest. A negative
+ * or NaN threshold gives `MTCUT_STATUS_INVALID_ARGUMENT`. On success `*out` receives a
+ * new mesh (with the model's cell and point data, see `mtcut_mt`).
+ *
+ * # Safety
+ * `mt` must be a live model handle; `out` a writable pointer.
+ */
+mtcut_status mtcut_mt_extract_threshold(const struct mtcut_mt *mt,
+                                        double threshold,
+                                        struct mtcut_mesh **out);
+
+/**
+ * The mesh `options_or_null` ask for (NULL: the defaults, the input mesh): uniform
+ * threshold, a focus region with its own threshold, a budget. Invalid options (a
+ * negative threshold, an unknown focus kind, a non-finite or inside-out region) give
+ * `MTCUT_STATUS_INVALID_ARGUMENT` naming the field. On success `*out` receives a new
+ * mesh and `stats_or_null`, if given, the numbers.
+ *
+ * # Safety
+ * `mt` must be a live model handle; a non-NULL `options_or_null` a readable
+ * `mtcut_extract_options` with `struct_size` set; a non-NULL `stats_or_null` writable;
+ * `out` a writable pointer.
+ */
+mtcut_status mtcut_mt_extract(const struct mtcut_mt *mt,
+                              const struct mtcut_extract_options *options_or_null,
+                              struct mtcut_extract_stats *stats_or_null,
+                              struct mtcut_mesh **out);
+
+/**
+ * A frontier at what `options_or_null` ask for (NULL: the input mesh), into `*out`.
+ * Options are checked as in `mtcut_mt_extract`.
+ *
+ * # Safety
+ * `mt` must be a live model handle; a non-NULL `options_or_null` a readable
+ * `mtcut_extract_options` with `struct_size` set; `out` a writable pointer.
+ */
+mtcut_status mtcut_frontier_new(const struct mtcut_mt *mt,
+                                const struct mtcut_extract_options *options_or_null,
+                                struct mtcut_frontier **out);
+
+/**
+ * Moves the frontier to what `options` ask for (required: the new focus, thresholds or
+ * budget), touching only what changes. Invalid options are refused as in
+ * `mtcut_mt_extract`, the frontier unchanged. `stats_or_null`, if given, receives what
+ * changed.
+ *
+ * # Safety
+ * `frontier` must be a live frontier handle used by no other thread during the call;
+ * `options` a readable `mtcut_extract_options` with `struct_size` set; a non-NULL
+ * `stats_or_null` writable.
+ */
+mtcut_status mtcut_frontier_update(struct mtcut_frontier *frontier,
+                                   const struct mtcut_extract_options *options,
+                                   struct mtcut_frontier_update_stats *stats_or_null);
+
+/**
+ * Number of tets in the frontier's mesh; 0 (with the last error set) when `frontier` is
+ * NULL.
+ *
+ * # Safety
+ * A non-NULL `frontier` must be a live frontier handle.
+ */
+size_t mtcut_frontier_tet_count(const struct mtcut_frontier *frontier);
+
+/**
+ * The frontier's current mesh as a new mesh in `*out` (tets in increasing model id, with
+ * the model's cell and point data, as `mtcut_mt_extract` gives).
+ *
+ * # Safety
+ * `frontier` must be a live frontier handle; `out` a writable pointer.
+ */
+mtcut_status mtcut_frontier_mesh(const struct mtcut_frontier *frontier,
+                                 struct mtcut_mesh **out);
+
+/**
+ * Releases a frontier. NULL is allowed (nothing happens).
+ *
+ * # Safety
+ * A non-NULL `frontier` must be a live handle from this library, not used after the call.
+ */
+void mtcut_frontier_free(struct mtcut_frontier *frontier);
 
 #ifdef __cplusplus
 }  // extern "C"

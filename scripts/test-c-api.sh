@@ -7,10 +7,26 @@
 #     example, the NULL-argument test, the C++17 wrapper, the VTK round trip, and each
 #     under valgrind memcheck;
 #  4. minimal consumers: CMake with mtcut::mtcut, CMake with mtcut::mtcut_static,
-#     pkg-config; and a CMake version request the package must refuse.
-# Needs cargo, cmake, pkg-config, cc, readelf and nm (binutils), valgrind.
+#     pkg-config, the README's C snippet; and a CMake version request the package must
+#     refuse;
+#  5. ParaView (pvbatch under xvfb-run) opens what the examples wrote - a plain mesh, cut
+#     meshes, extractions - and `mtcut demo`'s outputs (and any FILE.pvd given), checks
+#     counts and arrays, and saves screenshots (scripts/pvbatch-check.py).
+# Needs cargo, cmake, pkg-config, cc, readelf and nm (binutils), valgrind; for step 5
+# pvbatch (paraview), xvfb-run and apt-get (ParaView's Python package is fetched with
+# `apt-get download`, DESIGN.md section 8, when pvbatch cannot import it).
+#
+# Usage: scripts/test-c-api.sh [--screenshots DIR] [FILE.pvd ...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+screenshots=""
+extra_files=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --screenshots) screenshots=$2; shift 2 ;;
+    *) extra_files+=("$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"); shift ;;
+  esac
+done
 
 for tool in cmake pkg-config cc readelf nm valgrind; do
   command -v "$tool" >/dev/null || { echo "$0: $tool is needed" >&2; exit 1; }
@@ -78,6 +94,16 @@ cc -std=c99 -o "$work/pc-app" c-examples/consumer/app.c $(pkg-config --cflags --
    -Wl,-rpath,"$(pkg-config --variable=libdir mtcut)"
 "$work/pc-app"
 
+step "README: the C snippet compiles (C99, every warning an error) and runs"
+awk '/compiles and runs this very snippet/ {found = 1} found && /^```c$/ {inside = 1; next}
+     inside && /^```$/ {exit} inside {print}' README.md > "$work/readme.c"
+[ -s "$work/readme.c" ] || fail "no C snippet found in README.md"
+# shellcheck disable=SC2046 # the flags are words
+cc -std=c99 -pedantic -Wall -Wextra -Werror -o "$work/readme" "$work/readme.c" \
+   $(pkg-config --cflags --libs mtcut) -Wl,-rpath,"$(pkg-config --variable=libdir mtcut)"
+(cd "$work" && ./readme "$OLDPWD/tests/data/pinion-coarse.node" && [ -s cut.vtu ]) ||
+  fail "the README's C snippet"
+
 step "CMake package version: SameMajorVersion"
 next=$((major + 1)).0
 if cmake -S c-examples/consumer -B "$work/too-new" -DCMAKE_PREFIX_PATH="$prefix" \
@@ -87,5 +113,45 @@ fi
 grep -q "version: $version" "$work/too-new.log" ||
   fail "find_package(mtcut $next) failed for another reason: $(cat "$work/too-new.log")"
 echo "find_package(mtcut $next) refuses $version, as it must"
+
+step "ParaView: pvbatch opens the outputs, checks them, saves screenshots"
+out=$work/examples/out
+pv_files=("$out/cube.vtu=$work/cube.json" "$out/cut-through.vtu" "$out/cut-part0.vtu")
+if ctest --test-dir "$work/examples" -N | grep -q "tetgen_mt"; then
+  pv_files+=("$out/tetgen-coarse.vtu" "$out/tetgen-focus.vtu" "$out/tetgen-cut.vtu")
+fi
+if ctest --test-dir "$work/examples" -N | grep -q "vtk_cut"; then
+  pv_files+=("$out/box-cut.vtu")
+fi
+# mesh_basics wrote the cube (8 points, 6 tets) with these columns.
+cat > "$work/cube.json" <<'JSON'
+{"points": 8, "cells": 6, "point_arrays": ["temperature", "displacement"], "cell_arrays": ["material"]}
+JSON
+# The demo's outputs (a .pvd when the demo writes one), without expectations beyond
+# "opens, has tets, same arrays in every step".
+cargo run --release --locked --quiet --bin mtcut -- demo -o "$work/demo" >/dev/null
+for f in "$work"/demo/*.pvd "$work"/demo/*.vtu "${extra_files[@]}"; do
+  [ -e "$f" ] && pv_files+=("$f")
+done
+pv_check() { xvfb-run -a pvbatch scripts/pvbatch-check.py --screenshots "${screenshots:-$work/screenshots}" "${pv_files[@]}"; }
+if ! command -v pvbatch >/dev/null || ! command -v xvfb-run >/dev/null; then
+  [ -z "${CI:-}" ] || fail "pvbatch and xvfb-run are needed (apt-get install --no-install-recommends paraview xvfb xauth)"
+  echo "note: pvbatch or xvfb-run not found: the ParaView check was skipped"
+else
+  echo 'import paraview.simple' > "$work/probe.py"
+  if ! xvfb-run -a pvbatch "$work/probe.py" >/dev/null 2>&1; then
+    # Debian's pvbatch without its Python package (which conflicts with python3-vtk9):
+    # unpack the package beside the system, as DESIGN.md section 8 says.
+    target_dir=$(cargo metadata --format-version 1 --no-deps --locked |
+      sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')
+    pvpy=$target_dir/python3-paraview
+    if [ ! -d "$pvpy/root/usr/lib/python3/dist-packages/paraview" ]; then
+      mkdir -p "$pvpy"
+      (cd "$pvpy" && apt-get download python3-paraview >/dev/null && dpkg -x python3-paraview_*.deb root)
+    fi
+    export PYTHONPATH=$pvpy/root/usr/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}
+  fi
+  pv_check
+fi
 
 step "C API checks passed"

@@ -6,8 +6,8 @@
 use std::path::Path;
 
 /// Functions that need no boundary: they return static data, or catch panics themselves
-/// (`mtcut_mesh_free`, which has no status to report with).
-const NO_STATUS: [&str; 7] = [
+/// (the `*_free` functions, which have no status to report with).
+const NO_STATUS: [&str; 9] = [
     "mtcut_status_message",
     "mtcut_last_error_message",
     "mtcut_version",
@@ -15,6 +15,8 @@ const NO_STATUS: [&str; 7] = [
     "mtcut_version_minor",
     "mtcut_version_patch",
     "mtcut_mesh_free",
+    "mtcut_mt_free",
+    "mtcut_frontier_free",
 ];
 
 #[test]

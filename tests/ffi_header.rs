@@ -133,9 +133,20 @@ fn version_macros_match_cargo_toml() {
 #[test]
 fn header_compiles_as_c99_and_cpp17() {
     // Every declaration used, so that the compilers check the types, not only the syntax.
-    let uses = "mtcut_mesh *m = 0; mtcut_mt *mt = 0; mtcut_quality q; \
+    let uses = "mtcut_mesh *m = 0; mtcut_mt *mt = 0; mtcut_frontier *f = 0; mtcut_quality q; \
                 mtcut_location loc = MTCUT_LOCATION_TET; mtcut_status s = MTCUT_STATUS_OK; \
-                (void)m; (void)mt; (void)loc; (void)s; q.struct_size = sizeof q; (void)q;";
+                mtcut_cut_options co; mtcut_cut_stats cs; mtcut_build_options bo; \
+                mtcut_mt_stats ms; mtcut_extract_options eo; mtcut_extract_stats es; \
+                mtcut_frontier_update_stats fs; mtcut_progress_callback cb = 0; \
+                mtcut_cut_scheme sc = MTCUT_CUT_SCHEME_BIELSER17; \
+                mtcut_error_metric em = MTCUT_ERROR_METRIC_QUALITY; \
+                mtcut_focus_kind fk = MTCUT_FOCUS_BOX; \
+                (void)m; (void)mt; (void)f; (void)loc; (void)s; q.struct_size = sizeof q; (void)q; \
+                co.struct_size = sizeof co; (void)co; cs.struct_size = sizeof cs; (void)cs; \
+                bo.struct_size = sizeof bo; bo.progress_or_null = cb; (void)bo; \
+                ms.struct_size = sizeof ms; (void)ms; eo.struct_size = sizeof eo; (void)eo; \
+                es.struct_size = sizeof es; (void)es; fs.struct_size = sizeof fs; (void)fs; \
+                (void)sc; (void)em; (void)fk;";
     compile(
         "c",
         &format!("#include \"mtcut.h\"\nint main(void) {{ {uses} return 0; }}\n"),

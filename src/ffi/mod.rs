@@ -8,7 +8,7 @@
 //! is the only module of the crate allowed to contain `unsafe` code.
 //!
 //! Conventions (DESIGN.md §7; stated for C users in the header's preamble, `cbindgen.toml`):
-//! * opaque handles (`mtcut_mesh`), created by `mtcut_<object>_<verb>` functions into an
+//! * opaque handles (`mtcut_mesh`, `mtcut_mt`, `mtcut_frontier`), created by `mtcut_<object>_<verb>` functions into an
 //!   `out` argument and released by `mtcut_<object>_free`;
 //! * every fallible function returns an `mtcut_status` with a fixed value
 //!   ([`status`]), and leaves a message for `mtcut_last_error_message` ([`error`]);
@@ -24,7 +24,7 @@
 
 // The header lists the exported items in this order (cbindgen follows it; the blank lines
 // keep rustfmt from sorting them): status and errors, versions, meshes, their measures,
-// their attributes.
+// their attributes, cuts, multi-tessellations.
 mod status;
 
 mod error;
@@ -37,13 +37,19 @@ mod measure;
 
 mod attributes;
 
+mod cut;
+
+mod mt;
+
 mod guard;
 mod strings;
 mod versioned;
 
 pub use attributes::*;
+pub use cut::*;
 pub use error::*;
 pub use measure::*;
 pub use mesh::*;
+pub use mt::*;
 pub use status::*;
 pub use version::*;

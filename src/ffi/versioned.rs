@@ -1,7 +1,7 @@
 //! Structs that may grow: the `struct_size` convention.
 //!
-//! Every struct passed by pointer whose fields may be added to (statistics out today;
-//! option structs in, with the MT and cut API) starts with `size_t struct_size`, which the
+//! Every struct passed by pointer whose fields may be added to (statistics out, written
+//! by [`VersionedOut`]; option structs in, read by [`read_optional`]) starts with `size_t struct_size`, which the
 //! caller sets to `sizeof` the struct as *its* header declares it. Fields are only ever
 //! appended within a major version. The library reads or writes only the bytes within
 //! `struct_size`, so a program compiled against an older header keeps working with a newer
@@ -17,7 +17,9 @@ use super::status::{Failure, FfiResult};
 ///
 /// # Safety
 /// Implementors must be `#[repr(C)]` with `struct_size: usize` as their first field, and
-/// `FIRST_SIZE` must not exceed `size_of::<Self>()`.
+/// `FIRST_SIZE` must not exceed `size_of::<Self>()`. Structs read from C
+/// ([`read_optional`]) must accept any bit pattern in their fields (numbers, raw and
+/// nullable function pointers: no `bool`, no Rust enum, no reference).
 pub(crate) unsafe trait Versioned: Copy {
     /// The C name, for messages.
     const NAME: &'static str;
@@ -34,19 +36,9 @@ pub(crate) struct VersionedOut<T> {
 
 impl<T: Versioned> VersionedOut<T> {
     pub fn new(out: Out<T>) -> FfiResult<VersionedOut<T>> {
-        // SAFETY: `out` is checked non-NULL and aligned for T, whose first field is a usize
-        // (the trait's contract) that the caller initialised.
-        let size = unsafe { out.as_ptr().cast::<usize>().read() };
-        if !(T::FIRST_SIZE..=size_of::<T>()).contains(&size) {
-            return Err(Failure::invalid(format!(
-                "{}.struct_size is {size}; this library accepts {} to {} (set it to \
-                 sizeof({}) before the call)",
-                T::NAME,
-                T::FIRST_SIZE,
-                size_of::<T>(),
-                T::NAME
-            )));
-        }
+        // SAFETY: `out` is checked non-NULL and aligned for T; the caller initialised its
+        // first field.
+        let size = unsafe { checked_size(out.as_ptr()) }?;
         Ok(VersionedOut { out, size })
     }
 
@@ -60,6 +52,62 @@ impl<T: Versioned> VersionedOut<T> {
         // `new`), and the caller's struct is writable for `size` bytes.
         unsafe { std::ptr::copy_nonoverlapping(src.add(skip), dst.add(skip), self.size - skip) };
     }
+}
+
+/// The caller's `struct_size` at `p`, checked against what this library knows of `T`.
+///
+/// # Safety
+/// `p` must be non-NULL and aligned (checked by the caller), pointing to a `T` whose first
+/// field the caller initialised.
+unsafe fn checked_size<T: Versioned>(p: *const T) -> FfiResult<usize> {
+    // SAFETY: the caller's contract; the first field is a usize (the trait's contract).
+    let size = unsafe { p.cast::<usize>().read() };
+    if !(T::FIRST_SIZE..=size_of::<T>()).contains(&size) {
+        return Err(Failure::invalid(format!(
+            "{}.struct_size is {size}; this library accepts {} to {} (set it to \
+             sizeof({}) before the call)",
+            T::NAME,
+            T::FIRST_SIZE,
+            size_of::<T>(),
+            T::NAME
+        )));
+    }
+    Ok(size)
+}
+
+/// Reads an options struct the caller may pass as NULL: `defaults` when NULL, else the
+/// caller's fields within its `struct_size` over `defaults` (fields a program compiled
+/// against an older header does not know keep their default; `struct_size` stays the
+/// one of `defaults`).
+///
+/// # Safety
+/// A non-NULL `p` must point to a readable `T` of at least its `struct_size` bytes.
+pub(crate) unsafe fn read_optional<T: Versioned>(
+    p: *const T,
+    arg: &str,
+    defaults: T,
+) -> FfiResult<T> {
+    if p.is_null() {
+        return Ok(defaults);
+    }
+    // SAFETY: forwarded contract (non-NULL here; alignment checked by `deref`).
+    unsafe { super::guard::deref(p, arg) }?;
+    // SAFETY: non-NULL and aligned (just checked).
+    let size = unsafe { checked_size(p) }?;
+    let mut value = defaults;
+    let skip = size_of::<usize>();
+    // SAFETY: `skip..size` lies within size_of::<T>() (checked), the caller's struct is
+    // readable for `size` bytes (its contract), and `value` is a local T. Copying bytes
+    // (padding included) is untyped; the fields of `T` accept any bit pattern (the trait's
+    // contract), so the result is a valid T.
+    unsafe {
+        std::ptr::copy_nonoverlapping(
+            p.cast::<u8>().add(skip),
+            (&mut value as *mut T).cast::<u8>().add(skip),
+            size - skip,
+        )
+    };
+    Ok(value)
 }
 
 #[cfg(test)]
