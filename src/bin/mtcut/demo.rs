@@ -9,10 +9,10 @@ use crate::build::{build_with_bar, progress_bar};
 use crate::cut::{Parts, part_path};
 use crate::info::MeshInfo;
 use flate2::read::GzDecoder;
-use mtcut::cut::{CutOptions, CutStats, cut_mesh};
+use mtcut::cut::{CUT_COLUMN, CutOptions, CutStats, VertexOrigin, cut_mesh};
 use mtcut::geom::{Aabb, CutPolygon, DVec3};
 use mtcut::io::{PvdEntry, parse_tetgen, write_mesh, write_pvd};
-use mtcut::mesh::{ImportReport, TetMesh};
+use mtcut::mesh::{Attribute, ImportReport, TetMesh};
 use mtcut::mt::{BuildOptions, ExtractOptions, POINT_VERTEX};
 use std::error::Error;
 use std::io::Read;
@@ -62,9 +62,19 @@ fn cut_finest(
     polygon: &CutPolygon,
 ) -> Result<(TetMesh, CutStats), Box<dyn Error>> {
     let mut mesh = finest.clone();
-    // MT vertex ids are not quantities to interpolate at the cut's new vertices.
-    mesh.point_data.remove(POINT_VERTEX);
     let result = cut_mesh(&mut mesh, polygon, &CutOptions::DEFAULT)?;
+    // MT vertex ids are not quantities to interpolate: a copy of a vertex the cut passes
+    // through is still that MT vertex; a point the cut made on an edge or a face is none
+    // (-1). The column stays, so every step of demo.pvd carries the same arrays.
+    if let Some(ids) = mesh.point_data.get_mut(POINT_VERTEX) {
+        let first = result.first_new_vertex.idx();
+        for (k, origin) in result.origins.iter().enumerate() {
+            ids.values[first + k] = match origin {
+                VertexOrigin::Copy { of } => ids.values[of.idx()],
+                VertexOrigin::Edge { .. } | VertexOrigin::Face { .. } => -1.0,
+            };
+        }
+    }
     Ok((mesh, result.stats))
 }
 
@@ -112,10 +122,17 @@ pub fn run(args: Args) -> CliResult {
     .into_iter()
     .enumerate()
     {
+        // The levels carry the cut column too (0: made by no cut), so every step of the
+        // .pvd has the same arrays and ParaView can colour them all alike.
+        let mut level = level.mesh.clone();
+        let zeros = vec![0.0; level.nb_tets()];
+        level.cell_data.insert(
+            Attribute::new(CUT_COLUMN, 1, zeros).ok_or("the cut column could not be made")?,
+        );
         entries.push(PvdEntry {
             timestep: step as f64,
             part: 0,
-            file: write_in(dir, name, &level.mesh)?,
+            file: write_in(dir, name, &level)?,
         });
     }
 
