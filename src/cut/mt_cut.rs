@@ -10,9 +10,11 @@
 //! 1. **Candidates, over all levels.** Every tet of the pool (not only a frontier) that C
 //!    may cross: fragments are filtered by their boxes against C's box and plane, then the
 //!    tets each fragment creates (every tet has exactly one creator, so each is met once)
-//!    by their vertex states, as the plain-mesh engine does ([`super::classify`]).
+//!    by their box and vertex states, as the plain-mesh engine does ([`super::classify`]).
 //!    Fragment boxes are re-derived by [`OpenMt::close`] after each cut, so the filter
-//!    always sees the tets cuts appended.
+//!    always sees the tets cuts appended. The fragment filter is a linear pass over the
+//!    fragment boxes, not yet a hierarchy ([`crate::mt::FragmentBvh`] would serve; it is
+//!    a small part of the time measured by `benches/table2.rs`).
 //! 2. **Replace, with one classification for the whole pool.** All candidates of all
 //!    levels go to one [`CutSession`]: its records are keyed by global vertex ids, so an
 //!    edge or a face shared by tets of several levels gets one cut point (one per side)
@@ -27,6 +29,9 @@
 //!    scale, a cut point may lie closer to an end than `snap` of the edge, so coarse
 //!    levels may get thinner children than the finest one (orientation is still checked
 //!    exactly by `Mt::validate`).
+//!
+//!    With the MT's `snap` (at most [`MAX_MT_SNAP`], default 1e-6), "snapped" means on
+//!    the plane up to rounding: degenerate cuts (through vertices, along edges and faces).
 //!
 //!    **Which snapped vertices are duplicated** is decided once per vertex over all
 //!    levels: a vertex the cut passes through gets one copy, used by the negative tets of
@@ -55,7 +60,9 @@
 //!
 //! # Limits
 //!
-//! * **No snapping** (`snap` must be 0, [`MtCutter::DEFAULT_OPTIONS`]). Snapping a vertex
+//! * **Almost no snapping** (`snap` at most [`MAX_MT_SNAP`]; [`MtCutter::DEFAULT_OPTIONS`]
+//!   has 1e-6, enough to keep cut points off the vertices' rounding, where 0 made inverted
+//!   children in the tests). Snapping a vertex
 //!   near the plane onto the cut bends the cut surface through it, and the side of a tet
 //!   whose other vertices are all snapped is the side of its remaining vertex: two tets of
 //!   different levels on the same side of a snapped triangle can then take different sides,
@@ -64,7 +71,7 @@
 //!   breaks. Measured on the shared meshes with the engine's default 0.2; fixing it needs
 //!   the side of such tets decided per face across levels, which is not done. Vertices
 //!   exactly on the plane (degenerate cuts) are still on the cut, consistently. The price
-//!   of `snap` 0 is quality: cut points can lie arbitrarily close to an edge's ends, so
+//!   of so small a `snap` is quality: cut points can lie arbitrarily close to an edge's ends, so
 //!   children can be thin (every orientation is still exact, and checked by
 //!   `Mt::validate`).
 //! * A vertex exactly on the cut whose tets in the finest mesh do not form one group per
@@ -222,8 +229,8 @@ fn union(parent: &mut [u32], a: u32, b: u32) {
 }
 
 impl MtCutter {
-    /// The options of an MT cut: the engine's defaults with `snap` 0 (vertices are on the
-    /// cut only when exactly on its plane, inside C).
+    /// The options of an MT cut: the engine's defaults with `snap` 1e-6 (vertices are on
+    /// the cut only when on its plane up to rounding, inside C).
     pub const DEFAULT_OPTIONS: CutOptions = CutOptions {
         snap: crate::geom::Tolerance { relative: 1e-6 },
         ..CutOptions::DEFAULT
@@ -232,8 +239,8 @@ impl MtCutter {
     /// Prepares `mt` (which should be valid: [`Mt::validate`]) for cutting with `options`
     /// (start from [`MtCutter::DEFAULT_OPTIONS`]). Only
     /// [`Scheme::Lut`](super::Scheme::Lut) is supported (the 1:17 scheme does not conform
-    /// across tets, which the levels of an MT need), and only `snap` 0 (see the module
-    /// docs, "Limits").
+    /// across tets, which the levels of an MT need), and `snap` at most [`MAX_MT_SNAP`]
+    /// (see the module docs, "Limits").
     pub fn new(mt: Mt, options: CutOptions) -> Result<MtCutter, CutError> {
         options.check()?;
         if options.snap.relative > MAX_MT_SNAP {

@@ -45,7 +45,7 @@
 //!
 //! ## Designed for cuts (paper §3)
 //!
-//! Cuts ([`crate::cut::MtCutter`]) open the store ([`Mt::open`], [`OpenMt`]: one creator
+//! Cuts (`crate::cut::MtCutter`, in the layer above) open the store ([`Mt::open`], [`OpenMt`]: one creator
 //! and destroyer per tet), replace and append tets, append vertices with interpolated
 //! attribute rows and fragments split in parts, and close it again ([`OpenMt::close`]),
 //! which sorts the pool back into arcs and re-derives everything else. [`Mt::canonical_form`] compares two MTs independently
