@@ -49,8 +49,7 @@
 //!    fragment's floor and ceiling, ghosts included, keep the same boundary.
 //! 3. **The DAG.** Each new tet inherits its parent's creator and destroyer. Then each
 //!    fragment involved is split by the connected components of its floor and ceiling
-//!    (tets joined through shared faces, ghosts included, and a floor tet joined to a
-//!    ceiling tet through the same boundary triangle): a fragment with `k` components
+//!    (tets, ghosts included, joined through shared vertices): a fragment with `k` components
 //!    becomes `k` fragments (the first keeps its id, the others are appended with its kind
 //!    and error), each creating and destroying the tets of its part. The paper's
 //!    `UpdateIncomingArcs` / `UpdateOutgoingArcs` are this relabelling seen from the arcs:
@@ -929,25 +928,24 @@ fn unsnapped_state(positions: &[DVec3], polygon: &CutPolygon, v: VertexId, tets:
     if neg && !pos { NEG } else { POS }
 }
 
-/// The connected parts of a fragment: floor tets joined through shared faces, ceiling tets
-/// likewise, and a floor tet to a ceiling tet holding the same boundary triangle. Returns
+/// The connected parts of a fragment: its floor and ceiling tets (ghosts included) joined
+/// through shared vertices. A cut straight through gives the two sides disjoint vertex
+/// sets (every vertex on the crack is duplicated), so sharing a vertex means not
+/// separated; joining floor to ceiling by vertices (rather than by boundary faces) also
+/// pairs a piece the cut isolated inside the fragment's floor, closed by its ghosts and
+/// sharing no face with the ceiling, with the piece replacing it in the ceiling. Returns
 /// the part of each floor tet then each ceiling tet, numbered by first appearance.
 fn split_fragment(tets: &[Tet], floor: &[u32], ceiling: &[u32]) -> Vec<u32> {
     let n = floor.len() + ceiling.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
-    let mut seen: [HashMap<FaceKey, u32>; 2] = [HashMap::new(), HashMap::new()];
-    for (set, list) in [floor, ceiling].into_iter().enumerate() {
-        let base = if set == 0 { 0 } else { floor.len() };
-        for (j, &t) in list.iter().enumerate() {
-            let me = (base + j) as u32;
-            for f in faces_of(&tets[t as usize]) {
-                if let Some(&o) = seen[set].get(&flip(f)) {
-                    union(&mut parent, me, o);
+    let mut first: HashMap<VertexId, u32> = HashMap::new();
+    for (i, &t) in floor.iter().chain(ceiling).enumerate() {
+        for &v in tets[t as usize].iter().filter(|v| **v != GHOST) {
+            match first.get(&v) {
+                Some(&o) => union(&mut parent, i as u32, o),
+                None => {
+                    first.insert(v, i as u32);
                 }
-                if let Some(&o) = seen[1 - set].get(&f) {
-                    union(&mut parent, me, o);
-                }
-                seen[set].insert(f, me);
             }
         }
     }
