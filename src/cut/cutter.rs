@@ -13,7 +13,7 @@ use super::tables::{NEG, ON, POS, Side};
 use super::unglue::{Copies, StarEntry, plan_copies};
 use crate::geom::{CutPolygon, DVec3, Sign};
 use crate::mesh::tables::TET_EDGES;
-use crate::mesh::{Attribute, FaceAdjacency, Tet, TetId, TetMesh, VertexId};
+use crate::mesh::{Attribute, Attributes, FaceAdjacency, Tet, TetId, TetMesh, VertexId};
 use std::time::{Duration, Instant};
 
 /// The per-tet column marking tets created by cuts: the 1-based number of the cut that
@@ -565,14 +565,24 @@ fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrig
         .map(|o| origin_position(mesh.positions(), o))
         .collect();
     mesh.positions_vec_mut().extend(new);
+    push_origin_rows(&mut mesh.point_data, scales, origins);
+}
+
+/// Appends the point-data rows and scales of the vertices of `origins` (interpolated from
+/// the vertices they are made of; the largest scale of those). Shared with the MT cut.
+pub(crate) fn push_origin_rows(
+    point_data: &mut Attributes,
+    scales: &mut Vec<f64>,
+    origins: &[VertexOrigin],
+) {
     for o in origins {
         let scale = match *o {
             VertexOrigin::Edge { a, b, t, .. } => {
-                mesh.point_data.push_lerp(a.idx(), b.idx(), t);
+                point_data.push_lerp(a.idx(), b.idx(), t);
                 scales[a.idx()].max(scales[b.idx()])
             }
             VertexOrigin::Face { v, w } => {
-                mesh.point_data.push_combination(&[
+                point_data.push_combination(&[
                     (v[0].idx(), w[0]),
                     (v[1].idx(), w[1]),
                     (v[2].idx(), w[2]),
@@ -580,7 +590,7 @@ fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrig
                 v.iter().map(|x| scales[x.idx()]).fold(0.0, f64::max)
             }
             VertexOrigin::Copy { of } => {
-                mesh.point_data.push_copy(of.idx());
+                point_data.push_copy(of.idx());
                 scales[of.idx()]
             }
         };

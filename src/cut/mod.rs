@@ -61,7 +61,7 @@
 //!   and the tets around it planned again ([`Cutter::cut`]); its cut points then keep
 //!   `snap` away from it.
 //!
-//! ## For the Multi-Tessellation (next issues)
+//! ## For the Multi-Tessellation ([`mt_cut`])
 //!
 //! The same vertex is used by tets of several levels, so its duplication must be decided
 //! once, for all of them. The engine gives what that needs: [`CutSession`] (classification
@@ -83,6 +83,7 @@ pub mod bvh;
 pub mod classify;
 pub mod components;
 pub mod cutter;
+pub mod mt_cut;
 pub mod options;
 pub mod report;
 pub mod split;
@@ -93,6 +94,7 @@ pub mod unglue;
 pub use classify::{CutScratch, CutSession, TetClass, VertexOrigin};
 pub use components::Components;
 pub use cutter::{CUT_COLUMN, Cutter, cut_mesh, vertex_scales};
+pub use mt_cut::{MtCutStats, MtCutTimes, MtCutter};
 pub use options::{CutError, CutOptions, Scheme};
 pub use report::{CutResult, CutStats, CutTimes, SplitRecord};
 pub use tables::{CutCase, Side};

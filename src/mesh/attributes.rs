@@ -113,6 +113,15 @@ impl Attributes {
         }
     }
 
+    /// Appends `n` rows of zeros to every column (rows of elements with no data of their
+    /// own, such as the ghost tets of an MT).
+    pub fn push_zeros(&mut self, n: usize) {
+        for c in &mut self.columns {
+            let len = c.values.len() + n * c.components;
+            c.values.resize(len, 0.0);
+        }
+    }
+
     /// Appends to every column `(1 - t) × a + t × b`: the value at a point a fraction `t`
     /// of the way from element `a` to element `b` (new vertices on edges).
     pub fn push_lerp(&mut self, a: usize, b: usize, t: f64) {

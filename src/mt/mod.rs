@@ -45,16 +45,17 @@
 //!
 //! ## Designed for cuts (paper §3)
 //!
-//! Cuts will append tets to the pool and arcs to the arc table (the table stays sorted by
-//! pool position, so the binary search from tet to arc keeps working), append vertices to
-//! the pool with interpolated attribute rows, split fragments by appending fragment
-//! records, and rebuild the arc lists. [`Mt::canonical_form`] compares two MTs independently
+//! Cuts (`crate::cut::MtCutter`, in the layer above) open the store ([`Mt::open`], [`OpenMt`]: one creator
+//! and destroyer per tet), replace and append tets, append vertices with interpolated
+//! attribute rows and fragments split in parts, and close it again ([`OpenMt::close`]),
+//! which sorts the pool back into arcs and re-derives everything else. [`Mt::canonical_form`] compares two MTs independently
 //! of vertex, tet and fragment numbering.
 
 pub mod build;
 pub mod bvh;
 pub mod canonical;
 mod csr;
+pub mod edit;
 pub mod error;
 pub mod extract;
 pub mod file;
@@ -64,6 +65,7 @@ pub mod validate;
 pub use build::{BuildError, BuildOptions, BuildPhase, BuildProgress, BuildStats, Rejections};
 pub use bvh::{Bvh, FragmentBvh, Region};
 pub use canonical::{CanonicalFragment, CanonicalMt, TetKey};
+pub use edit::OpenMt;
 pub use error::{BoundaryError, ErrorMetric, QualityError, TetError, TetSample, VolumeError};
 pub use extract::{
     CELL_ERROR, CELL_FRAGMENT, CELL_LEVEL, ExtractError, ExtractOptions, ExtractStats, Extraction,
@@ -480,9 +482,10 @@ impl Mt {
         &self.drains
     }
 
-    /// Number of independent MTs held in this store.
+    /// Number of independent MTs held in this store: the weakly connected components of
+    /// the DAG ([`Mt::fragment_components`]; extract one with [`Mt::component`]).
     pub fn nb_components(&self) -> usize {
-        self.roots.len()
+        self.fragment_components().0
     }
 
     /// The longest root-to-drain path.

@@ -199,15 +199,22 @@ impl Mt {
             return r;
         }
         // Kinds and the DAG.
-        if self.roots.is_empty() || self.drains.is_empty() || self.roots.len() != self.drains.len()
-        {
-            r.add(MtViolationKind::FragmentKind, || {
-                format!(
-                    "{} roots and {} drains",
-                    self.roots.len(),
-                    self.drains.len()
-                )
-            });
+        // Each independent MT (DAG component) has its roots and drains; a cut may split a
+        // root or a drain without separating the whole DAG.
+        let (nc, label) = self.fragment_components();
+        let mut has = vec![(false, false); nc];
+        for &f in &self.roots {
+            has[label[f.idx()] as usize].0 = true;
+        }
+        for &f in &self.drains {
+            has[label[f.idx()] as usize].1 = true;
+        }
+        for (k, &(root, drain)) in has.iter().enumerate() {
+            if !(root && drain) {
+                r.add(MtViolationKind::FragmentKind, || {
+                    format!("component {k}: root {root}, drain {drain}")
+                });
+            }
         }
         for f in 0..nf {
             let fid = FragmentId::from_usize(f);

@@ -1,0 +1,964 @@
+//! Cutting a Multi-Tessellation (paper §3): every level of detail and the DAG.
+//!
+//! [`MtCutter`] owns an [`Mt`] and cuts it with planar convex polygons. After a cut, every
+//! mesh extracted from the MT — any threshold, any focus region — is cut by the polygon,
+//! and a body cut straight through becomes independent MTs in the same store
+//! ([`Mt::nb_components`], [`Mt::component`]).
+//!
+//! # The three steps
+//!
+//! 1. **Candidates, over all levels.** Every tet of the pool (not only a frontier) that C
+//!    may cross: fragments are filtered by their boxes against C's box and plane, then the
+//!    tets each fragment creates (every tet has exactly one creator, so each is met once)
+//!    by their box and vertex states, as the plain-mesh engine does ([`super::classify`]).
+//!    Fragment boxes are re-derived by [`OpenMt::close`] after each cut, so the filter
+//!    always sees the tets cuts appended. The fragment filter is a linear pass over the
+//!    fragment boxes, not yet a hierarchy ([`crate::mt::FragmentBvh`] would serve; it is
+//!    a small part of the time measured by `benches/table2.rs`).
+//! 2. **Replace, with one classification for the whole pool.** All candidates of all
+//!    levels go to one [`CutSession`]: its records are keyed by global vertex ids, so an
+//!    edge or a face shared by tets of several levels gets one cut point (one per side)
+//!    and one face point, and every tet is split by the engine's tables
+//!    ([`super::split::split_tet`]; no second split implementation). Vertex states, hence
+//!    snapping, depend on the position and the vertex's scale only: one decision per
+//!    vertex for all levels. Scales are the longest incident edge in the *finest* mesh
+//!    (every pool vertex is in it when the MT is built; vertices made by cuts take the
+//!    largest scale of the vertices they are made of), as the plain-mesh engine would have
+//!    them there: scales over all levels would snap whole fine tets onto the cut, with
+//!    a crack surface far off the plane. The price: on coarse edges, longer than the
+//!    scale, a cut point may lie closer to an end than `snap` of the edge, so coarse
+//!    levels may get thinner children than the finest one (orientation is still checked
+//!    exactly by `Mt::validate`).
+//!
+//!    With the MT's `snap` (at most [`MAX_MT_SNAP`], default 1e-6), "snapped" means on
+//!    the plane up to rounding: degenerate cuts (through vertices, along edges and faces).
+//!
+//!    **Which snapped vertices are duplicated** is decided once per vertex over all
+//!    levels: a vertex the cut passes through gets one copy, used by the negative tets of
+//!    every level, when tets of both sides surround it and none of its tets, on any level,
+//!    straddles the cut there (a straddling tet is a crack tip: a partial cut ends at that
+//!    vertex on some level, so the vertex stays shared). Cut points have their two copies
+//!    from the engine; face points are tips and never copied.
+//!
+//!    **Ghost tets** (the MT's closure of each level's boundary, see [`crate::mt`]) follow
+//!    their triangle: a ghost whose boundary triangle the cut subdivides is replaced by one
+//!    ghost per sub-triangle (the faces of the adjacent tet's children that lie in it), on
+//!    the side of its child; a ghost touching a duplicated vertex takes the copy of its
+//!    side. The crack surface is new boundary: every face of a new tet that no tet or
+//!    ghost of the pool matches gets a ghost with the tet's creator and destroyer, so each
+//!    fragment's floor and ceiling, ghosts included, keep the same boundary.
+//! 3. **The DAG.** Each new tet inherits its parent's creator and destroyer. Then each
+//!    fragment involved is split by the connected components of its floor and ceiling
+//!    (tets, ghosts included, joined through shared vertices): a fragment with `k` components
+//!    becomes `k` fragments (the first keeps its id, the others are appended with its kind
+//!    and error), each creating and destroying the tets of its part. The paper's
+//!    `UpdateIncomingArcs` / `UpdateOutgoingArcs` are this relabelling seen from the arcs:
+//!    arcs are re-derived from the tets' creators and destroyers when the MT is closed.
+//!    Processing a fragment reads only its own tets and writes only their links to it, so
+//!    any order gives the same MT ([`MtCutter::cut_in_order`] lets tests check this).
+//!
+//! # Limits
+//!
+//! * **Almost no snapping** (`snap` at most [`MAX_MT_SNAP`]; [`MtCutter::DEFAULT_OPTIONS`]
+//!   has 1e-6, enough to keep cut points off the vertices' rounding, where 0 made inverted
+//!   children in the tests). Snapping a vertex
+//!   near the plane onto the cut bends the cut surface through it, and the side of a tet
+//!   whose other vertices are all snapped is the side of its remaining vertex: two tets of
+//!   different levels on the same side of a snapped triangle can then take different sides,
+//!   so a fragment's floor sees the crack open at a face of its region's boundary where its
+//!   ceiling sees it closed — the MT condition (floor and ceiling with the same boundary)
+//!   breaks. Measured on the shared meshes with the engine's default 0.2; fixing it needs
+//!   the side of such tets decided per face across levels, which is not done. Vertices
+//!   exactly on the plane (degenerate cuts) are still on the cut, consistently. The price
+//!   of so small a `snap` is quality: cut points can lie arbitrarily close to an edge's ends, so
+//!   children can be thin (every orientation is still exact, and checked by
+//!   `Mt::validate`).
+//! * A vertex exactly on the cut whose tets in the finest mesh do not form one group per
+//!   side (the engine's *pinched* vertices and boundary saddles) is left unsnapped on every
+//!   level, as the engine does on a plain mesh; coarser levels are not analysed separately.
+//! * Closing the MT sorts the pool back into arcs: that part of the DAG update costs time
+//!   in proportion to the pool, not to the cut (measured in `benches/table2.rs`).
+
+use super::classify::{CutScratch, CutSession, NONE, StateClassifier, TetClass, is_candidate};
+use super::classify::{VertexOrigin, origin_position};
+use super::cutter::push_origin_rows;
+use super::options::{CutError, CutOptions};
+use super::split::{Children, split_tet};
+use super::tables::{NEG, ON, POS, Side};
+use super::unglue::{StarEntry, plan_copies};
+use crate::geom::{Aabb, CutPolygon, DVec3, Sign};
+use crate::mesh::tables::{TET_EDGES, TET_FACES};
+use crate::mesh::{FragmentId, Tet, TetId, VertexId};
+use crate::mt::{FragmentKind, GHOST, Mt, OpenMt};
+use std::collections::{HashMap, HashSet};
+use std::time::Instant;
+
+/// Times of one MT cut, in seconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MtCutTimes {
+    /// Step 1: finding the candidate tets of every level.
+    pub query: f64,
+    /// Step 2: classifying and splitting cells, duplicating vertices, ghosts (the paper's
+    /// "split" column, which includes finding the cells).
+    pub split: f64,
+    /// Step 3: relabelling, splitting fragments and closing the MT into arcs (the paper's
+    /// "DAG" column).
+    pub dag: f64,
+    /// The whole cut.
+    pub total: f64,
+}
+
+/// Statistics of one MT cut (Table 2's columns and more).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MtCutStats {
+    /// Fragments whose floor or ceiling holds a tet the cut changed.
+    pub fragments_involved: usize,
+    /// Of those, the fragments the cut separated (each became two or more).
+    pub fragments_split: usize,
+    /// Fragments appended by the splits.
+    pub fragments_added: usize,
+    /// Non-ghost tets whose vertex states were computed.
+    pub tets_tested: usize,
+    /// Tets of any level that touch the cut or that its plane crosses near C.
+    pub tets_candidate: usize,
+    /// Tets of any level replaced by the tables (the paper's "input cells").
+    pub tets_cut: usize,
+    /// Tets those were replaced by (the tables' output).
+    pub tets_created: usize,
+    /// Tets the 1:17 scheme of Bielser et al. would have created for the same cells
+    /// (17 each, the paper's baseline column).
+    pub tets_created_1_17: usize,
+    /// Ghost tets subdivided, and ghosts added on the crack surface.
+    pub ghosts_split: usize,
+    pub crack_ghosts: usize,
+    /// New vertices: cut points (two per cut edge), face points and copies of snapped
+    /// vertices.
+    pub vertices_added: usize,
+    pub vertex_copies: usize,
+    pub vertices_snapped: usize,
+    /// Snapped vertices left shared because a tet of some level straddles there.
+    pub vertices_tips: usize,
+    /// Vertices left unsnapped: in the finest mesh their tets do not form one group per
+    /// side, which one copy per side cannot separate.
+    pub vertices_unsnapped: usize,
+    /// Independent MTs after the cut.
+    pub components: usize,
+    pub time: MtCutTimes,
+}
+
+impl MtCutStats {
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "fragments_involved": self.fragments_involved,
+            "fragments_split": self.fragments_split,
+            "fragments_added": self.fragments_added,
+            "tets_tested": self.tets_tested,
+            "tets_candidate": self.tets_candidate,
+            "tets_cut": self.tets_cut,
+            "tets_created": self.tets_created,
+            "tets_created_1_17": self.tets_created_1_17,
+            "ghosts_split": self.ghosts_split,
+            "crack_ghosts": self.crack_ghosts,
+            "vertices_added": self.vertices_added,
+            "vertex_copies": self.vertex_copies,
+            "vertices_snapped": self.vertices_snapped,
+            "vertices_tips": self.vertices_tips,
+            "vertices_unsnapped": self.vertices_unsnapped,
+            "components": self.components,
+            "time": {
+                "query": self.time.query,
+                "split": self.time.split,
+                "dag": self.time.dag,
+                "total": self.time.total,
+            },
+        })
+    }
+}
+
+/// An MT ready to be cut many times (see the [module docs](self)).
+pub struct MtCutter {
+    /// Always `Some` between calls (taken while a cut commits).
+    mt: Option<Mt>,
+    /// Longest incident edge of each vertex in the finest mesh (see the module docs).
+    scales: Vec<f64>,
+    max_scale: f64,
+    bounds: Aabb,
+    scratch: CutScratch,
+    options: CutOptions,
+}
+
+/// Largest `snap` an MT cut accepts (see the module docs, "Limits").
+pub const MAX_MT_SNAP: f64 = 1e-4;
+
+/// A face as an oriented triangle, rotated so its smallest id comes first.
+type FaceKey = [u32; 3];
+
+fn oriented(a: u32, b: u32, c: u32) -> FaceKey {
+    if a < b && a < c {
+        [a, b, c]
+    } else if b < c {
+        [b, c, a]
+    } else {
+        [c, a, b]
+    }
+}
+
+fn flip(f: FaceKey) -> FaceKey {
+    oriented(f[0], f[2], f[1])
+}
+
+/// The outward faces of a tet, oriented.
+fn faces_of(t: &Tet) -> [FaceKey; 4] {
+    TET_FACES.map(|f| oriented(t[f[0]].0, t[f[1]].0, t[f[2]].0))
+}
+
+fn find(parent: &mut [u32], mut i: u32) -> u32 {
+    while parent[i as usize] != i {
+        parent[i as usize] = parent[parent[i as usize] as usize];
+        i = parent[i as usize];
+    }
+    i
+}
+
+fn union(parent: &mut [u32], a: u32, b: u32) {
+    let (x, y) = (find(parent, a), find(parent, b));
+    if x != y {
+        parent[x.max(y) as usize] = x.min(y);
+    }
+}
+
+impl MtCutter {
+    /// The options of an MT cut: the engine's defaults with `snap` 1e-6 (vertices are on
+    /// the cut only when on its plane up to rounding, inside C).
+    pub const DEFAULT_OPTIONS: CutOptions = CutOptions {
+        snap: crate::geom::Tolerance { relative: 1e-6 },
+        ..CutOptions::DEFAULT
+    };
+
+    /// Prepares `mt` (which should be valid: [`Mt::validate`]) for cutting with `options`
+    /// (start from [`MtCutter::DEFAULT_OPTIONS`]). Only
+    /// [`Scheme::Lut`](super::Scheme::Lut) is supported (the 1:17 scheme does not conform
+    /// across tets, which the levels of an MT need), and `snap` at most [`MAX_MT_SNAP`]
+    /// (see the module docs, "Limits").
+    pub fn new(mt: Mt, options: CutOptions) -> Result<MtCutter, CutError> {
+        options.check()?;
+        if options.snap.relative > MAX_MT_SNAP {
+            return Err(CutError::InvalidOption {
+                option: "snap",
+                value: options.snap.relative,
+                expected: "at most 1e-4 for an MT (see the module docs: snapping off the \
+                           plane bends the cut surface differently on each level)",
+            });
+        }
+        if options.scheme != super::Scheme::Lut {
+            return Err(CutError::InvalidOption {
+                option: "scheme",
+                value: 1.0,
+                expected: "the look-up tables (the 1:17 scheme is not conforming)",
+            });
+        }
+        let mut scales = vec![0.0f64; mt.nb_vertices()];
+        let finest = mt
+            .roots()
+            .iter()
+            .flat_map(|&r| mt.created_tets(r))
+            .map(|t| mt.tet(t))
+            .filter(|t| t[3] != GHOST);
+        for t in finest {
+            for [a, b] in TET_EDGES {
+                let (u, v) = (t[a].idx(), t[b].idx());
+                let l = mt.positions()[u].distance(mt.positions()[v]);
+                scales[u] = scales[u].max(l);
+                scales[v] = scales[v].max(l);
+            }
+        }
+        let max_scale = scales.iter().copied().fold(0.0, f64::max);
+        let bounds = Aabb::from_points(mt.positions());
+        Ok(MtCutter {
+            mt: Some(mt),
+            scales,
+            max_scale,
+            bounds,
+            scratch: CutScratch::new(),
+            options,
+        })
+    }
+
+    pub fn mt(&self) -> &Mt {
+        self.mt
+            .as_ref()
+            .expect("MtCutter holds its MT between cuts")
+    }
+
+    pub fn into_mt(self) -> Mt {
+        self.mt.expect("MtCutter holds its MT between cuts")
+    }
+
+    pub fn options(&self) -> &CutOptions {
+        &self.options
+    }
+
+    /// The scale of each vertex (longest incident edge in the finest mesh; vertices made by
+    /// cuts take the largest scale of the vertices they are made of).
+    pub fn vertex_scales(&self) -> &[f64] {
+        &self.scales
+    }
+
+    /// Cuts every level of the MT with `polygon` and updates the DAG (see the
+    /// [module docs](self)). The cut is planned in full before the MT changes.
+    pub fn cut(&mut self, polygon: &CutPolygon) -> Result<MtCutStats, CutError> {
+        self.cut_in_order(polygon, None)
+    }
+
+    /// [`cut`](Self::cut), processing the involved fragments of step 3 in the order of
+    /// `key(fragment)` (ascending) instead of by id: the result must not depend on it.
+    pub fn cut_in_order(
+        &mut self,
+        polygon: &CutPolygon,
+        key: Option<&dyn Fn(FragmentId) -> u64>,
+    ) -> Result<MtCutStats, CutError> {
+        let start = Instant::now();
+        let opts = self.options;
+        let mut stats = MtCutStats::default();
+        let mt = self
+            .mt
+            .as_ref()
+            .expect("MtCutter holds its MT between cuts");
+        let nv = mt.nb_vertices();
+        let positions = mt.positions();
+
+        // Step 1: fragments by box, then the tets they create by vertex states.
+        let classifier = StateClassifier::new(polygon, opts.snap, &self.bounds, self.max_scale);
+        let coord = self
+            .bounds
+            .min
+            .abs()
+            .max(self.bounds.max.abs())
+            .max_element();
+        let slack = 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element());
+        let margin = 2.0 * opts.snap.distance(self.max_scale) + slack;
+        let cbox = polygon.bbox();
+        let grown = Aabb {
+            min: cbox.min - DVec3::splat(margin),
+            max: cbox.max + DVec3::splat(margin),
+        };
+        let normal = polygon.normal();
+        let offset = polygon.plane().offset;
+        let box_meets = |b: &Aabb| {
+            if !b.intersects(&grown) {
+                return false;
+            }
+            let c = (b.min + b.max) * 0.5;
+            let e = (b.max - b.min) * 0.5;
+            (normal.dot(c) - offset).abs() <= normal.abs().dot(e) + margin
+        };
+        let mut cand: Vec<TetId> = Vec::new();
+        let mut states: Vec<[u8; 4]> = Vec::new();
+        for f in 0..mt.nb_fragments() {
+            let f = FragmentId::from_usize(f);
+            if mt.fragment_kind(f) == FragmentKind::Drain || !box_meets(&mt.fragment_bbox(f)) {
+                continue;
+            }
+            for t in mt.created_tets(f) {
+                let tet = mt.tet(t);
+                if tet[3] == GHOST {
+                    continue;
+                }
+                stats.tets_tested += 1;
+                let s = classifier.tet(positions, &self.scales, &tet);
+                if is_candidate(s)
+                    && box_meets(&Aabb::from_points(&tet.map(|v| positions[v.idx()])))
+                {
+                    cand.push(t);
+                    states.push(s);
+                }
+            }
+        }
+        let tets: Vec<Tet> = cand.iter().map(|&t| mt.tet(t)).collect();
+        stats.tets_candidate = cand.len();
+        stats.time.query = start.elapsed().as_secs_f64();
+
+        // Step 2: one classification for all levels, then the tables.
+        let t_split = Instant::now();
+        let par = tets.len() >= opts.parallel_threshold;
+        let mut session = CutSession::new(
+            polygon,
+            opts.snap,
+            opts.face_point_margin,
+            &mut self.scratch,
+            nv,
+        );
+        let mut classes = session.classify(positions, &self.scales, &tets, &states, par);
+        let mut children: Vec<Children> = Vec::new();
+        let mut child_of = vec![NONE; tets.len()];
+        let split_into =
+            |session: &CutSession<'_>, k: usize, class: &TetClass, children: &mut Vec<Children>| {
+                let mut c = Children::new();
+                if split_tet(session, &tets[k], class, &mut c) {
+                    children.push(c);
+                    (children.len() - 1) as u32
+                } else {
+                    NONE
+                }
+            };
+        for k in 0..tets.len() {
+            child_of[k] = split_into(&session, k, &classes[k], &mut children);
+        }
+        // Snapped vertices whose tets in the finest mesh do not form one group per side
+        // (the engine's analysis, [`super::unglue`]) are left unsnapped on every level, and
+        // the tets around them classified and split again, as the plain-mesh engine does.
+        let finest: Vec<bool> = cand
+            .iter()
+            .map(|&t| mt.fragment_kind(mt.tet_creator(t)) == FragmentKind::Root)
+            .collect();
+        loop {
+            let mut star: Vec<StarEntry> = Vec::new();
+            let mut on_cut: Vec<VertexId> = Vec::new();
+            for (k, class) in classes.iter().enumerate() {
+                if !finest[k] || !class.touches_cut() {
+                    continue;
+                }
+                for (&s, &v) in class.states.iter().zip(&tets[k]) {
+                    if s == ON {
+                        on_cut.push(v);
+                    }
+                }
+                match child_of[k] {
+                    NONE => {
+                        let side = side_of_states(&tets[k], class.states, positions, polygon);
+                        for j in (0..4).filter(|&j| class.states[j] == ON) {
+                            star.push(StarEntry {
+                                vertex: tets[k][j],
+                                tet: TetId((32 * k) as u32),
+                                verts: tets[k],
+                                side,
+                            });
+                        }
+                    }
+                    i => {
+                        let ch = &children[i as usize];
+                        for c in 0..ch.len {
+                            for j in (0..4).filter(|&j| ch.on_cut[c] & (1 << j) != 0) {
+                                star.push(StarEntry {
+                                    vertex: ch.tets[c][j],
+                                    tet: TetId((32 * k + c) as u32),
+                                    verts: ch.tets[c],
+                                    side: ch.sides[c],
+                                });
+                            }
+                        }
+                    }
+                }
+            }
+            on_cut.sort_unstable();
+            on_cut.dedup();
+            let plan = plan_copies(&on_cut, &star, None, |v| {
+                on_cut.binary_search(&v).unwrap_or(0)
+            });
+            let mut bad = plan.pinched;
+            for w in plan.groups.windows(2) {
+                if w[0].0 == w[1].0 {
+                    bad.push(w[0].0);
+                }
+            }
+            bad.sort_unstable();
+            bad.dedup();
+            if bad.is_empty() {
+                break;
+            }
+            stats.vertices_unsnapped += bad.len();
+            let mut affected: Vec<usize> = Vec::new();
+            for &u in &bad {
+                let state = unsnapped_state(positions, polygon, u, &tets);
+                session.forget_vertex(u);
+                for (k, tet) in tets.iter().enumerate() {
+                    if let Some(j) = tet.iter().position(|&x| x == u) {
+                        states[k][j] = state;
+                        affected.push(k);
+                    }
+                }
+            }
+            affected.sort_unstable();
+            affected.dedup();
+            let sub_tets: Vec<Tet> = affected.iter().map(|&k| tets[k]).collect();
+            let sub_states: Vec<[u8; 4]> = affected.iter().map(|&k| states[k]).collect();
+            let sub = session.classify(positions, &self.scales, &sub_tets, &sub_states, false);
+            for (&k, class) in affected.iter().zip(sub) {
+                classes[k] = class;
+                child_of[k] = split_into(&session, k, &classes[k], &mut children);
+            }
+        }
+        let first_new = VertexId::from_usize(nv);
+        let origins = session.allocate(first_new);
+        let mut live: Vec<Children> = Vec::new();
+        for slot in child_of.iter_mut().filter(|i| **i != NONE) {
+            let mut c = children[*slot as usize];
+            for t in c.tets[..c.len].iter_mut() {
+                *t = t.map(|v| session.resolve(v));
+            }
+            *slot = live.len() as u32;
+            live.push(c);
+        }
+        let children = live;
+        drop(session);
+        stats.tets_cut = children.len();
+        stats.tets_created = children.iter().map(|c| c.len).sum();
+        stats.tets_created_1_17 = 17 * children.len();
+
+        // Snapped vertices: the sides around each over all levels.
+        let unsplit: Vec<Side> = (0..tets.len())
+            .map(|k| side_of_states(&tets[k], classes[k].states, positions, polygon))
+            .collect();
+        let unsplit_side = |k: usize| unsplit[k];
+        // Per snapped vertex: seen positive, negative, straddling.
+        let mut around: HashMap<VertexId, [bool; 3]> = HashMap::new();
+        let mut note = |v: VertexId, side: Side| {
+            let e = around.entry(v).or_default();
+            match side {
+                Side::Positive => e[0] = true,
+                Side::Negative => e[1] = true,
+                Side::Straddle => e[2] = true,
+            }
+        };
+        for (k, class) in classes.iter().enumerate() {
+            if !class.touches_cut() {
+                continue;
+            }
+            let on: Vec<VertexId> = (0..4)
+                .filter(|&j| class.states[j] == ON)
+                .map(|j| tets[k][j])
+                .collect();
+            match child_of[k] {
+                NONE => {
+                    let side = unsplit_side(k);
+                    for &v in &on {
+                        note(v, side);
+                    }
+                }
+                i => {
+                    let ch = &children[i as usize];
+                    for c in 0..ch.len {
+                        for &v in on.iter().filter(|v| ch.tets[c].contains(v)) {
+                            note(v, ch.sides[c]);
+                        }
+                    }
+                }
+            }
+        }
+        let mut snapped: Vec<VertexId> = around.keys().copied().collect();
+        snapped.sort_unstable();
+        stats.vertices_snapped = snapped.len();
+        let mut copy_of: HashMap<VertexId, VertexId> = HashMap::new();
+        let mut copies: Vec<VertexId> = Vec::new();
+        for &v in &snapped {
+            let [p, n, s] = around[&v];
+            if s {
+                stats.vertices_tips += 1;
+            } else if p && n {
+                copy_of.insert(v, VertexId::from_usize(nv + origins.len() + copies.len()));
+                copies.push(v);
+            }
+        }
+        stats.vertex_copies = copies.len();
+        stats.vertices_added = origins.len() + copies.len();
+        let is_cut_vertex =
+            |v: VertexId| v.0 != GHOST.0 && (v >= first_new || around.contains_key(&v));
+        let for_side = |t: Tet, side: Side| -> Tet {
+            if side == Side::Negative {
+                t.map(|v| copy_of.get(&v).copied().unwrap_or(v))
+            } else {
+                t
+            }
+        };
+
+        // Sub-triangles of every subdivided face of a split tet, keyed by the face as the
+        // tet sees it from inside (outward orientation): what a ghost on that face becomes.
+        let on_face = |x: VertexId, face: [VertexId; 3]| -> bool {
+            if face.contains(&x) {
+                return true;
+            }
+            if x < first_new {
+                return false;
+            }
+            match origins[x.idx() - nv] {
+                VertexOrigin::Edge { a, b, .. } => face.contains(&a) && face.contains(&b),
+                VertexOrigin::Face { v, .. } => v.iter().all(|y| face.contains(y)),
+                VertexOrigin::Copy { .. } => false,
+            }
+        };
+        let mut sub_faces: HashMap<FaceKey, Vec<(Tet, Side)>> = HashMap::new();
+        for (k, &i) in child_of.iter().enumerate() {
+            if i == NONE {
+                continue;
+            }
+            let ch = &children[i as usize];
+            for lf in TET_FACES {
+                let face = lf.map(|j| tets[k][j]);
+                let key = oriented(face[0].0, face[1].0, face[2].0);
+                if sub_faces.contains_key(&key) {
+                    continue;
+                }
+                let mut subs: Vec<(Tet, Side)> = Vec::new();
+                for c in 0..ch.len {
+                    let t = ch.tets[c];
+                    for cf in TET_FACES {
+                        let tri = cf.map(|j| t[j]);
+                        if tri.iter().all(|&x| on_face(x, face)) {
+                            subs.push(([tri[0], tri[1], tri[2], GHOST], ch.sides[c]));
+                        }
+                    }
+                }
+                if subs.len() > 1 {
+                    sub_faces.insert(key, subs);
+                }
+            }
+        }
+        // The side of the tets holding faces with a snapped vertex (for ghosts not
+        // subdivided but touching a duplicated vertex).
+        let mut face_side: HashMap<FaceKey, Side> = HashMap::new();
+        for (k, class) in classes.iter().enumerate() {
+            if !class.touches_cut() {
+                continue;
+            }
+            match child_of[k] {
+                NONE => {
+                    for f in faces_of(&tets[k]) {
+                        face_side.insert(f, unsplit_side(k));
+                    }
+                }
+                i => {
+                    let ch = &children[i as usize];
+                    for c in 0..ch.len {
+                        for f in faces_of(&ch.tets[c]) {
+                            face_side.insert(f, ch.sides[c]);
+                        }
+                    }
+                }
+            }
+        }
+        let n_tets = mt.nb_tets();
+        let created_total = stats.tets_created;
+        if nv + stats.vertices_added > crate::mt::MAX_ELEMENTS
+            || n_tets + created_total * 2 > crate::mt::MAX_ELEMENTS
+        {
+            return Err(CutError::TooLarge {
+                max: crate::mt::MAX_ELEMENTS as u32,
+            });
+        }
+
+        // Commit: from here on the MT changes.
+        let dag = Reach::new(mt);
+        let mut open: OpenMt = self.mt.take().expect("MtCutter holds its MT").open();
+        let new_positions: Vec<DVec3> = origins
+            .iter()
+            .map(|o| origin_position(&open.positions, o))
+            .collect();
+        open.positions.extend(new_positions);
+        push_origin_rows(&mut open.point_data, &mut self.scales, &origins);
+        for &v in &copies {
+            let p = open.positions[v.idx()];
+            open.positions.push(p);
+            open.point_data.push_copy(v.idx());
+            self.scales.push(self.scales[v.idx()]);
+        }
+        // Real tets: children in place of their parents, unsplit tets on the negative side
+        // take copies. `touched` lists every real tet the cut changed or may have made a
+        // crack face of.
+        let mut touched: Vec<u32> = Vec::new();
+        let mut appended_parents: Vec<u32> = Vec::new();
+        for (k, &parent) in cand.iter().enumerate() {
+            match child_of[k] {
+                NONE => {
+                    if classes[k].touches_cut() {
+                        let side = unsplit_side(k);
+                        open.tets[parent.idx()] = for_side(tets[k], side);
+                        touched.push(parent.0);
+                    }
+                }
+                i => {
+                    let ch = &children[i as usize];
+                    open.tets[parent.idx()] = for_side(ch.tets[0], ch.sides[0]);
+                    touched.push(parent.0);
+                    let (c, d) = (open.creator[parent.idx()], open.destroyer[parent.idx()]);
+                    for j in 1..ch.len {
+                        touched.push(open.tets.len() as u32);
+                        open.tets.push(for_side(ch.tets[j], ch.sides[j]));
+                        open.creator.push(c);
+                        open.destroyer.push(d);
+                        appended_parents.push(parent.0);
+                    }
+                }
+            }
+        }
+        open.cell_data.push_copies(&appended_parents);
+        // Ghosts: subdivided with their triangle, or given the copies of their side.
+        let mut ghost_touched: Vec<u32> = Vec::new();
+        let mut appended_parents: Vec<u32> = Vec::new();
+        let n_pool = open.tets.len();
+        for g in 0..n_pool {
+            let tet = open.tets[g];
+            if tet[3] != GHOST {
+                continue;
+            }
+            let key = oriented(tet[0].0, tet[1].0, tet[2].0);
+            if let Some(subs) = sub_faces.get(&key) {
+                stats.ghosts_split += 1;
+                let (c, d) = (open.creator[g], open.destroyer[g]);
+                open.tets[g] = for_side(subs[0].0, subs[0].1);
+                ghost_touched.push(g as u32);
+                for &(t, side) in &subs[1..] {
+                    ghost_touched.push(open.tets.len() as u32);
+                    open.tets.push(for_side(t, side));
+                    open.creator.push(c);
+                    open.destroyer.push(d);
+                    appended_parents.push(g as u32);
+                }
+            } else if tet[..3].iter().any(|v| around.contains_key(v)) {
+                let side = face_side.get(&key).copied().unwrap_or(Side::Positive);
+                open.tets[g] = for_side(tet, side);
+                ghost_touched.push(g as u32);
+            }
+        }
+        open.cell_data.push_copies(&appended_parents);
+        // Crack faces: faces of changed tets, all of whose vertices lie on the cut, that no
+        // tet or ghost able to coexist with them in a frontier matches. (A tet of another
+        // level may hold the opposite face on the other side of the crack: snapping bends
+        // the cut surface differently on each level.)
+        let mut present: HashMap<FaceKey, Vec<u32>> = HashMap::new();
+        let all_cut = |t: &Tet, f: &[usize; 3]| f.iter().all(|&j| is_cut_vertex(t[j]));
+        for &t in &touched {
+            let tet = open.tets[t as usize];
+            for (lf, f) in TET_FACES.iter().zip(faces_of(&tet)) {
+                if all_cut(&tet, lf) {
+                    present.entry(f).or_default().push(t);
+                }
+            }
+        }
+        for &g in &ghost_touched {
+            let t = open.tets[g as usize];
+            if t[..3].iter().all(|&v| is_cut_vertex(v)) {
+                present
+                    .entry(flip(oriented(t[0].0, t[1].0, t[2].0)))
+                    .or_default()
+                    .push(g);
+            }
+        }
+        let coexist = |a: usize, b: usize| {
+            !dag.reaches(open.destroyer[a], open.creator[b])
+                && !dag.reaches(open.destroyer[b], open.creator[a])
+        };
+        let mut crack: Vec<(Tet, FragmentId, FragmentId)> = Vec::new();
+        for &t in &touched {
+            let tet = open.tets[t as usize];
+            for (lf, f) in TET_FACES.iter().zip(faces_of(&tet)) {
+                let matched = present
+                    .get(&flip(f))
+                    .is_some_and(|l| l.iter().any(|&o| coexist(t as usize, o as usize)));
+                if all_cut(&tet, lf) && !matched {
+                    let g = [tet[lf[0]], tet[lf[1]], tet[lf[2]], GHOST];
+                    crack.push((g, open.creator[t as usize], open.destroyer[t as usize]));
+                    ghost_touched.push((n_pool + appended_parents.len() + crack.len() - 1) as u32);
+                }
+            }
+        }
+        stats.crack_ghosts = crack.len();
+        for (g, c, d) in crack {
+            open.tets.push(g);
+            open.creator.push(c);
+            open.destroyer.push(d);
+        }
+        open.cell_data.push_zeros(stats.crack_ghosts);
+        stats.time.split = t_split.elapsed().as_secs_f64();
+
+        // Step 3: split every involved fragment by the components of its floor and ceiling.
+        let t_dag = Instant::now();
+        let nf = open.kind.len();
+        let mut involved = vec![false; nf];
+        for &t in touched.iter().chain(&ghost_touched) {
+            involved[open.creator[t as usize].idx()] = true;
+            involved[open.destroyer[t as usize].idx()] = true;
+        }
+        let mut order: Vec<FragmentId> = (0..nf)
+            .filter(|&f| involved[f])
+            .map(FragmentId::from_usize)
+            .collect();
+        if let Some(key) = key {
+            order.sort_by_key(|&f| (key(f), f));
+        }
+        stats.fragments_involved = order.len();
+        let mut slot = vec![u32::MAX; nf];
+        for (i, f) in order.iter().enumerate() {
+            slot[f.idx()] = i as u32;
+        }
+        // Floor and ceiling of each involved fragment, in pool order.
+        let mut floor: Vec<Vec<u32>> = vec![Vec::new(); order.len()];
+        let mut ceiling: Vec<Vec<u32>> = vec![Vec::new(); order.len()];
+        for t in 0..open.tets.len() {
+            let (c, d) = (slot[open.creator[t].idx()], slot[open.destroyer[t].idx()]);
+            if c != u32::MAX {
+                ceiling[c as usize].push(t as u32);
+            }
+            if d != u32::MAX {
+                floor[d as usize].push(t as u32);
+            }
+        }
+        for (i, &f) in order.iter().enumerate() {
+            let parts = split_fragment(&open.tets, &floor[i], &ceiling[i]);
+            let n_parts = parts.iter().map(|&p| p + 1).max().unwrap_or(1);
+            if n_parts < 2 {
+                continue;
+            }
+            stats.fragments_split += 1;
+            let first_new_fragment = open.kind.len() as u32;
+            for _ in 1..n_parts {
+                open.kind.push(open.kind[f.idx()]);
+                open.error.push(open.error[f.idx()]);
+            }
+            stats.fragments_added += (n_parts - 1) as usize;
+            let id = |p: u32| {
+                if p == 0 {
+                    f
+                } else {
+                    FragmentId(first_new_fragment + p - 1)
+                }
+            };
+            let nfl = floor[i].len();
+            for (j, &t) in floor[i].iter().enumerate() {
+                open.destroyer[t as usize] = id(parts[j]);
+            }
+            for (j, &t) in ceiling[i].iter().enumerate() {
+                open.creator[t as usize] = id(parts[nfl + j]);
+            }
+        }
+        let mt = open
+            .close()
+            .unwrap_or_else(|e| panic!("the MT cut left an inconsistent store: {e}"));
+        stats.components = mt.nb_components();
+        self.mt = Some(mt);
+        stats.time.dag = t_dag.elapsed().as_secs_f64();
+        stats.time.total = start.elapsed().as_secs_f64();
+        Ok(stats)
+    }
+}
+
+/// "Is fragment `b` a successor of `a` (or `a` itself)?" over the DAG before the cut: a
+/// depth-first search from `a` pruned by levels (a successor has a larger level).
+struct Reach {
+    level: Vec<u32>,
+    succ: Vec<Vec<u32>>,
+}
+
+impl Reach {
+    fn new(mt: &Mt) -> Reach {
+        let nf = mt.nb_fragments();
+        let mut succ = vec![Vec::new(); nf];
+        for a in 0..mt.nb_arcs() {
+            succ[mt.arc_creator(a).idx()].push(mt.arc_destroyer(a).0);
+        }
+        for s in &mut succ {
+            s.sort_unstable();
+            s.dedup();
+        }
+        let level = (0..nf)
+            .map(|f| mt.fragment_level(FragmentId::from_usize(f)))
+            .collect();
+        Reach { level, succ }
+    }
+
+    fn reaches(&self, a: FragmentId, b: FragmentId) -> bool {
+        if a == b {
+            return true;
+        }
+        let target = self.level[b.idx()];
+        let mut seen: HashSet<u32> = HashSet::new();
+        let mut stack = vec![a.0];
+        while let Some(f) = stack.pop() {
+            for &g in &self.succ[f as usize] {
+                if g == b.0 {
+                    return true;
+                }
+                if self.level[g as usize] < target && seen.insert(g) {
+                    stack.push(g);
+                }
+            }
+        }
+        false
+    }
+}
+
+/// The side of a tet the tables leave whole: the side of its vertices off the cut
+/// ([`Side::Straddle`] when both occur: C's plane crosses it outside C, or it is a crack
+/// tip); a tet with all four vertices snapped (a sliver lying in the cut) goes to the side
+/// of its centroid. As the plain-mesh engine decides.
+fn side_of_states(tet: &Tet, states: [u8; 4], positions: &[DVec3], polygon: &CutPolygon) -> Side {
+    match (states.contains(&POS), states.contains(&NEG)) {
+        (true, true) => Side::Straddle,
+        (true, false) => Side::Positive,
+        (false, true) => Side::Negative,
+        (false, false) => {
+            let c: DVec3 = tet.iter().map(|v| positions[v.idx()]).sum::<DVec3>() * 0.25;
+            if polygon.signed_distance(c) < 0.0 {
+                Side::Negative
+            } else {
+                Side::Positive
+            }
+        }
+    }
+}
+
+/// The state of a snapped vertex left unsnapped: its exact side; for a vertex exactly on
+/// the plane, the side of its neighbours off the plane when they are all on one side,
+/// positive otherwise (the plain-mesh engine's rule).
+fn unsnapped_state(positions: &[DVec3], polygon: &CutPolygon, v: VertexId, tets: &[Tet]) -> u8 {
+    match polygon.side(positions[v.idx()]) {
+        Sign::Negative => return NEG,
+        Sign::Positive => return POS,
+        Sign::Zero => {}
+    }
+    let (mut pos, mut neg) = (false, false);
+    for t in tets.iter().filter(|t| t.contains(&v)) {
+        for &x in t {
+            match polygon.side(positions[x.idx()]) {
+                Sign::Positive => pos = true,
+                Sign::Negative => neg = true,
+                Sign::Zero => {}
+            }
+        }
+    }
+    if neg && !pos { NEG } else { POS }
+}
+
+/// The connected parts of a fragment: its floor and ceiling tets (ghosts included) joined
+/// through shared vertices. A cut straight through gives the two sides disjoint vertex
+/// sets (every vertex on the crack is duplicated), so sharing a vertex means not
+/// separated; joining floor to ceiling by vertices (rather than by boundary faces) also
+/// pairs a piece the cut isolated inside the fragment's floor, closed by its ghosts and
+/// sharing no face with the ceiling, with the piece replacing it in the ceiling. Returns
+/// the part of each floor tet then each ceiling tet, numbered by first appearance.
+fn split_fragment(tets: &[Tet], floor: &[u32], ceiling: &[u32]) -> Vec<u32> {
+    let n = floor.len() + ceiling.len();
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    let mut first: HashMap<VertexId, u32> = HashMap::new();
+    for (i, &t) in floor.iter().chain(ceiling).enumerate() {
+        for &v in tets[t as usize].iter().filter(|v| **v != GHOST) {
+            match first.get(&v) {
+                Some(&o) => union(&mut parent, i as u32, o),
+                None => {
+                    first.insert(v, i as u32);
+                }
+            }
+        }
+    }
+    let mut label = vec![u32::MAX; n];
+    let mut next = 0;
+    (0..n as u32)
+        .map(|i| {
+            let r = find(&mut parent, i) as usize;
+            if label[r] == u32::MAX {
+                label[r] = next;
+                next += 1;
+            }
+            label[r]
+        })
+        .collect()
+}

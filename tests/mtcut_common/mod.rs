@@ -1,0 +1,163 @@
+//! Helpers of the MT cut tests: the invariants checked after every cut of an MT.
+#![allow(dead_code)]
+
+use mtcut::cut::MtCutter;
+use mtcut::geom::{CutPolygon, DVec3, Sign};
+use mtcut::mesh::TetMesh;
+use mtcut::mesh::tables::TET_EDGES;
+use mtcut::mt::{ExtractOptions, Mt, Region};
+
+/// SplitMix64 (seeded, reproducible).
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.next_u64() % n as u64) as usize
+    }
+}
+
+/// Volume of the finest and of the coarsest mesh.
+pub fn extreme_volumes(mt: &Mt) -> (f64, f64) {
+    let v = |o: &ExtractOptions| mt.extract(o).expect("extraction").mesh.volume();
+    (v(&ExtractOptions::FINEST), v(&ExtractOptions::COARSEST))
+}
+
+/// The extraction requests the acceptance asks for: `thresholds` uniform thresholds spread
+/// over the fragment errors (0 and +∞ included) and `regions` random focus regions.
+pub fn requests(mt: &Mt, thresholds: usize, regions: usize, rng: &mut Rng) -> Vec<ExtractOptions> {
+    let mut errors: Vec<f64> = (0..mt.nb_fragments())
+        .map(|f| mt.fragment_error(mtcut::mesh::FragmentId::from_usize(f)))
+        .filter(|e| e.is_finite())
+        .collect();
+    errors.sort_by(f64::total_cmp);
+    let mut out = vec![ExtractOptions::FINEST, ExtractOptions::COARSEST];
+    for k in 1..thresholds.saturating_sub(1) {
+        let e = errors[(errors.len() - 1) * k / (thresholds - 1)];
+        out.push(ExtractOptions::threshold(e));
+    }
+    let b = mtcut::geom::Aabb::from_points(mt.positions());
+    let coarse = errors.last().copied().unwrap_or(0.0);
+    for _ in 0..regions {
+        let c = b.min + (b.max - b.min) * DVec3::new(rng.unit(), rng.unit(), rng.unit());
+        let r = b.diagonal() * (0.05 + 0.2 * rng.unit());
+        out.push(ExtractOptions::threshold(coarse).with_focus(
+            Region::Sphere {
+                center: c,
+                radius: r,
+            },
+            0.0,
+        ));
+    }
+    out
+}
+
+/// An edge of `mesh` crossing one of `polygons` strictly inside it, away from vertices
+/// within snapping distance of the plane (`scale(v)` gives the distance for vertex `v` of
+/// the mesh).
+pub fn crossing(
+    mesh: &TetMesh,
+    polygons: &[CutPolygon],
+    near: impl Fn(usize, &CutPolygon) -> bool,
+) -> Option<String> {
+    let pos = mesh.positions();
+    for (k, polygon) in polygons.iter().enumerate() {
+        let side: Vec<Sign> = pos.iter().map(|p| polygon.side(*p)).collect();
+        for (t, tet) in mesh.tets().iter().enumerate() {
+            for [a, b] in TET_EDGES {
+                let (u, w) = (tet[a].idx(), tet[b].idx());
+                if side[u] != Sign::Zero
+                    && side[w] != Sign::Zero
+                    && side[u] != side[w]
+                    && polygon.segment_crosses_inside(pos[u], pos[w])
+                    && !near(u, polygon)
+                    && !near(w, polygon)
+                {
+                    return Some(format!(
+                        "polygon {k}: edge {u}-{w} of tet {t} crosses it inside ({:?} - {:?}, \
+                         distances {:e} {:e})",
+                        pos[u],
+                        pos[w],
+                        polygon.signed_distance(pos[u]),
+                        polygon.signed_distance(pos[w])
+                    ));
+                }
+            }
+        }
+    }
+    None
+}
+
+/// A valid mesh, or one whose only flaw is vertices of one part lying on the boundary of
+/// another part: bodies a cut separated, in contact along the crack (a focus extraction
+/// may show the two sides at different resolutions). Each part must then be valid alone.
+pub fn valid_mesh(mesh: &TetMesh) -> Result<(), String> {
+    use mtcut::mesh::ViolationKind;
+    let v = mesh.validate();
+    if v.is_valid() {
+        return Ok(());
+    }
+    let only_hanging = v.violations.iter().all(|x| {
+        x.kind == ViolationKind::HangingVertex
+            || x.kind.severity() == mtcut::mesh::Severity::Warning
+    });
+    let parts = mtcut::cut::Components::of(mesh);
+    if !only_hanging || parts.count < 2 {
+        return Err(v.to_string());
+    }
+    for (k, part) in parts.extract_all(mesh).iter().enumerate() {
+        let w = part.validate();
+        if !w.is_valid() {
+            return Err(format!("part {k} of {}: {w}", parts.count));
+        }
+    }
+    Ok(())
+}
+
+/// Every invariant after a cut: MT valid; finest and coarsest volumes kept (1e-12
+/// relative); every requested extraction a valid mesh crossed by none of `polygons`.
+pub fn check_after_cut(
+    cutter: &MtCutter,
+    volumes: (f64, f64),
+    polygons: &[CutPolygon],
+    requests: &[ExtractOptions],
+) -> Result<(), String> {
+    let mt = cutter.mt();
+    let report = mt.validate();
+    if !report.is_valid() {
+        return Err(format!("MT validate: {report}"));
+    }
+    let (f, c) = extreme_volumes(mt);
+    for (what, now, before) in [("finest", f, volumes.0), ("coarsest", c, volumes.1)] {
+        if (now - before).abs() > 1e-12 * before.abs() {
+            return Err(format!(
+                "{what} volume {now}, was {before} (relative {:e})",
+                (now - before).abs() / before.abs()
+            ));
+        }
+    }
+    let scales = cutter.vertex_scales();
+    let snap = cutter.options().snap;
+    for o in requests {
+        let e = mt.extract(o).map_err(|e| e.to_string())?;
+        valid_mesh(&e.mesh).map_err(|m| format!("extraction {o:?}: {m}"))?;
+        let near = |u: usize, p: &CutPolygon| {
+            let id = e.vertex_ids[u].idx();
+            p.signed_distance(e.mesh.positions()[u]).abs()
+                <= snap.distance(scales[id]).max(1e-9 * scales[id]) * 1.0001
+        };
+        if let Some(m) = crossing(&e.mesh, polygons, near) {
+            return Err(format!("extraction {o:?}: {m}"));
+        }
+    }
+    Ok(())
+}
