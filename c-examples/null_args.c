@@ -423,6 +423,8 @@ static void check_mt(const mtcut_mesh *mesh, const char *dir) {
   mtcut_extract_stats es;
   mtcut_frontier_update_stats fs;
   mtcut_mt_stats ms;
+  mtcut_cut_stats st;
+  double bad[9];
   char path[4096];
   int calls = 0;
   FILE *f;
@@ -492,6 +494,25 @@ static void check_mt(const mtcut_mesh *mesh, const char *dir) {
   ms.struct_size = sizeof ms * 2;
   EXPECT(mtcut_mt_statistics(good, &ms), MTCUT_STATUS_INVALID_ARGUMENT);
   UNTOUCHED(ms.vertices == 0);
+
+  memset(&st, 0, sizeof st);
+  st.struct_size = sizeof st;
+  EXPECT(mtcut_mt_cut(NULL, plane_xyz, 3, &st), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mt_cut(good, NULL, 3, &st), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mt_cut(good, plane_xyz, 2, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  EXPECT(mtcut_mt_cut(good, plane_xyz, SIZE_MAX, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  memcpy(bad, plane_xyz, sizeof bad);
+  bad[4] = NAN;
+  EXPECT(mtcut_mt_cut(good, bad, 3, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  st.struct_size = 1;
+  EXPECT(mtcut_mt_cut(good, plane_xyz, 3, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  UNTOUCHED(st.tets_cut == 0);
+
+  EXPECT(mtcut_mt_component(NULL, 0, &mt), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mt_component(good, 0, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mt_component(good, 1, &mt), MTCUT_STATUS_NOT_FOUND);
+  EXPECT(mtcut_mt_component(good, SIZE_MAX, &mt), MTCUT_STATUS_NOT_FOUND);
+  UNTOUCHED(mt == mt_sentinel);
 
   EXPECT(mtcut_mt_extract_threshold(NULL, 0.0, &out), MTCUT_STATUS_NULL_ARGUMENT);
   EXPECT(mtcut_mt_extract_threshold(good, 0.0, NULL), MTCUT_STATUS_NULL_ARGUMENT);

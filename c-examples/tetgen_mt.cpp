@@ -255,6 +255,29 @@ int main(int argc, char **argv) {
     verify(cut.components == 2 && components(finest.get()) == 2, "two pieces");
     verify(std::fabs(volume(finest.get()) - 30.0) < 1e-9, "the volume is kept");
     mtcut_example_write_vtu(finest.get(), dir.c_str(), "tetgen-cut.vtu");
+
+    // The model itself cut by the same plane: every level at once (paper section 3). The
+    // body falls into two independent models; each level keeps its volume.
+    const double coarse_volume = volume(coarse.get());
+    mtcut_cut_stats mt_cut;
+    std::memset(&mt_cut, 0, sizeof mt_cut);
+    mt_cut.struct_size = sizeof mt_cut;
+    check(mtcut_mt_cut(mt.get(), square, 4, &mt_cut), "model cut");
+    const mtcut_mt_stats after = statistics(mt.get());
+    std::printf("model cut: %zu tets of all levels cut, %zu created, %zu components, %.3f ms\n",
+                mt_cut.tets_cut, mt_cut.tets_created, after.components, 1e3 * mt_cut.seconds_cut);
+    verify(after.components == 2, "the model cut through is two models");
+    check(mtcut_mt_extract_threshold(mt.get(), middle, &raw), "coarse level of the cut model");
+    Mesh coarse_cut(raw);
+    verify_valid(coarse_cut.get(), "coarse level of the cut model");
+    verify(components(coarse_cut.get()) == 2, "the coarse level is in two pieces");
+    verify(std::fabs(volume(coarse_cut.get()) - coarse_volume) < 1e-12 * coarse_volume,
+           "the coarse level keeps its volume");
+    mtcut_example_write_vtu(coarse_cut.get(), dir.c_str(), "tetgen-mt-cut-coarse.vtu");
+    mtcut_mt *raw_part = nullptr;
+    check(mtcut_mt_component(mt.get(), 1, &raw_part), "component 1");
+    Mt part(raw_part);
+    verify(statistics(part.get()).components == 1, "a component is one model");
   } catch (const std::exception &e) {
     std::fprintf(stderr, "tetgen_mt: %s\n", e.what());
     return 1;

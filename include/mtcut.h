@@ -1067,6 +1067,43 @@ mtcut_status mtcut_mt_build(const struct mtcut_mesh *mesh,
                             struct mtcut_mt **out);
 
 /**
+ * Cuts every level of detail of the model with the planar convex polygon whose
+ * `n_points` corners, in order around it, are at `polygon_xyz` (paper section 3): every
+ * tet of every level the polygon crosses is replaced, the fragments it separates are
+ * split, and a body cut straight through becomes independent models in the same handle
+ * (`mtcut_mt_statistics` counts them as components). Polygon rules as in
+ * `mtcut_mesh_cut`. `stats_or_null`, if given, receives the counts over all levels
+ * (`tets_after`/`vertices_after`: the model's tets and vertices over all levels).
+ *
+ * The result is checked exhaustively (`Mt::validate`, linear in the model's size) before
+ * it replaces the model: a cut the MT update cannot yet represent validly (sequences of
+ * cuts crossing earlier ones can hit this; see the cut module's "Limits") gives
+ * `MTCUT_STATUS_INVALID_MESH` naming the first violation, and the model is unchanged.
+ * Frontiers made earlier keep extracting from the model as it was when they were made.
+ *
+ * # Safety
+ * `mt` must be a live model handle used by no other thread during the call;
+ * `polygon_xyz` readable for `3 x n_points` doubles; a non-NULL `stats_or_null` writable
+ * with its `struct_size` set.
+ */
+mtcut_status mtcut_mt_cut(struct mtcut_mt *mt,
+                          const double *polygon_xyz,
+                          size_t n_points,
+                          struct mtcut_cut_stats *stats_or_null);
+
+/**
+ * Component `k` (from 0; `mtcut_mt_statistics` counts them) of a model that cuts
+ * separated into independent models, as a model of its own: `*out` receives a new
+ * handle. `MTCUT_STATUS_NOT_FOUND` when `k` is not below the count.
+ *
+ * # Safety
+ * `mt` must be a live model handle; `out` a writable pointer.
+ */
+mtcut_status mtcut_mt_component(const struct mtcut_mt *mt,
+                                size_t k,
+                                struct mtcut_mt **out);
+
+/**
  * Writes the model to `path` in mtcut's binary `.mt` format (checksummed; any file name).
  * `MTCUT_STATUS_IO_ERROR` when the file cannot be written.
  *

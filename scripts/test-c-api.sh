@@ -118,7 +118,8 @@ step "ParaView: pvbatch opens the outputs, checks them, saves screenshots"
 out=$work/examples/out
 pv_files=("$out/cube.vtu=$work/cube.json" "$out/cut-through.vtu" "$out/cut-part0.vtu")
 if ctest --test-dir "$work/examples" -N | grep -q "tetgen_mt"; then
-  pv_files+=("$out/tetgen-coarse.vtu" "$out/tetgen-focus.vtu" "$out/tetgen-cut.vtu")
+  pv_files+=("$out/tetgen-coarse.vtu" "$out/tetgen-focus.vtu" "$out/tetgen-cut.vtu"
+            "$out/tetgen-mt-cut-coarse.vtu")
 fi
 if ctest --test-dir "$work/examples" -N | grep -q "vtk_cut"; then
   pv_files+=("$out/box-cut.vtu")

@@ -726,3 +726,113 @@ fn random_extraction_options_never_panic() {
     }
     assert!(accepted > 30, "only {accepted} accepted");
 }
+
+fn mt_cut(mt: &Model, polygon: &[f64]) -> (mtcut_status, mtcut_cut_stats) {
+    let mut s = cut_stats();
+    let status = unsafe { mtcut_mt_cut(mt.0, polygon.as_ptr(), polygon.len() / 3, &mut s) };
+    (status, s)
+}
+
+/// A square well beyond the body, in the plane z = `z`.
+fn square_at(m: &Mesh, z: f64) -> Vec<f64> {
+    let (xyz, _) = arrays(m);
+    let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+    for p in xyz.chunks_exact(3) {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let d = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    let (a, b) = ([lo[0] - d, lo[1] - d], [hi[0] + d, hi[1] + d]);
+    vec![a[0], a[1], z, b[0], a[1], z, b[0], b[1], z, a[0], b[1], z]
+}
+
+#[test]
+fn a_model_cut_through_becomes_two_models_and_keeps_its_volume() {
+    let input = read("liver.node");
+    let (xyz, _) = arrays(&input);
+    let zs: Vec<f64> = xyz.chunks_exact(3).map(|p| p[2]).collect();
+    let (zmin, zmax) = zs
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &z| (a.min(z), b.max(z)));
+    let mt = build(&input, None);
+    let before = mt_stats(&mt);
+    assert_eq!(before.components, 1);
+    // Simplification moves the boundary (within the build's tolerance): each level keeps
+    // its own volume through the cut, so compare with the same level before.
+    let level_volume = |mt: &Model, threshold: f64| {
+        let mut out = ptr::null_mut();
+        ok(unsafe { mtcut_mt_extract_threshold(mt.0, threshold, &mut out) });
+        let m = Mesh(out);
+        assert_valid(&m, "an extraction");
+        (volume(&m), components(&m))
+    };
+    let volumes_before = [level_volume(&mt, 0.0).0, level_volume(&mt, f64::INFINITY).0];
+    // A frontier made before the cut keeps the model it was made from.
+    let mut frontier = ptr::null_mut();
+    ok(unsafe { mtcut_frontier_new(mt.0, &extract_options(), &mut frontier) });
+    let frontier = Front(frontier);
+
+    // A bad polygon leaves the model as it was.
+    let flat = [0., 0., 0., 1., 0., 0., 2., 0., 0.];
+    let (status, s) = mt_cut(&mt, &flat);
+    refused(
+        status,
+        MTCUT_STATUS_INVALID_ARGUMENT,
+        "mtcut_mt_cut",
+        "polygon_xyz",
+    );
+    assert_eq!(s.tets_cut, 0);
+    assert_eq!(mt_stats(&mt), before);
+
+    let (status, s) = mt_cut(&mt, &square_at(&input, 0.5 * (zmin + zmax)));
+    ok(status);
+    assert!(s.tets_cut > 0 && s.tets_created > s.tets_cut, "{s:?}");
+    assert_eq!(
+        s.vertices_added,
+        s.cut_points + s.face_points + s.vertex_copies
+    );
+    assert_eq!(s.components, 2);
+    let after = mt_stats(&mt);
+    assert_eq!(after.components, 2);
+    assert_eq!(after.tets, s.tets_after);
+
+    // Finest and coarsest meshes keep their volume; the parts are separate bodies.
+    let v0 = volume(&input);
+    assert!((volumes_before[0] - v0).abs() <= 1e-12 * v0);
+    for (threshold, before) in [0.0, f64::INFINITY].into_iter().zip(volumes_before) {
+        let (v, parts) = level_volume(&mt, threshold);
+        assert_eq!(parts, 2);
+        assert!((v - before).abs() <= 1e-12 * before, "{v} vs {before}");
+    }
+    // Each component is a model of its own; their finest meshes add up to the input.
+    let mut total = 0.0;
+    for k in 0..2 {
+        let mut out = ptr::null_mut();
+        ok(unsafe { mtcut_mt_component(mt.0, k, &mut out) });
+        let part = Model(out);
+        assert_eq!(mt_stats(&part).components, 1);
+        let mut mesh = ptr::null_mut();
+        ok(unsafe { mtcut_mt_extract_threshold(part.0, 0.0, &mut mesh) });
+        let mesh = Mesh(mesh);
+        assert_valid(&mesh, "a component's finest mesh");
+        total += volume(&mesh);
+    }
+    assert!((total - v0).abs() <= 1e-12 * v0, "{total} vs {v0}");
+    let mut out = ptr::null_mut();
+    let status = unsafe { mtcut_mt_component(mt.0, 2, &mut out) };
+    refused(
+        status,
+        MTCUT_STATUS_NOT_FOUND,
+        "mtcut_mt_component",
+        "has 2",
+    );
+    assert!(out.is_null());
+
+    let mut old = ptr::null_mut();
+    ok(unsafe { mtcut_frontier_mesh(frontier.0, &mut old) });
+    let old = Mesh(old);
+    assert_eq!(tet_count(&old), tet_count(&input));
+    assert_eq!(components(&old), 1);
+}

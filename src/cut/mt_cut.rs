@@ -134,6 +134,10 @@ pub struct MtCutStats {
     /// New vertices: cut points (two per cut edge), face points and copies of snapped
     /// vertices.
     pub vertices_added: usize,
+    /// Of those: cut points (on edges, one per side), crack tips inside faces, and copies
+    /// of snapped vertices.
+    pub cut_points: usize,
+    pub face_points: usize,
     pub vertex_copies: usize,
     pub vertices_snapped: usize,
     /// Snapped vertices left shared because a tet of some level straddles there.
@@ -160,6 +164,8 @@ impl MtCutStats {
             "ghosts_split": self.ghosts_split,
             "crack_ghosts": self.crack_ghosts,
             "vertices_added": self.vertices_added,
+            "cut_points": self.cut_points,
+            "face_points": self.face_points,
             "vertex_copies": self.vertex_copies,
             "vertices_snapped": self.vertices_snapped,
             "vertices_tips": self.vertices_tips,
@@ -561,6 +567,13 @@ impl MtCutter {
         }
         stats.vertex_copies = copies.len();
         stats.vertices_added = origins.len() + copies.len();
+        for o in &origins {
+            match o {
+                VertexOrigin::Edge { .. } => stats.cut_points += 1,
+                VertexOrigin::Face { .. } => stats.face_points += 1,
+                VertexOrigin::Copy { .. } => stats.vertex_copies += 1,
+            }
+        }
         let is_cut_vertex =
             |v: VertexId| v.0 != GHOST.0 && (v >= first_new || around.contains_key(&v));
         let for_side = |t: Tet, side: Side| -> Tet {

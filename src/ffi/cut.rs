@@ -172,7 +172,7 @@ pub(crate) fn cut_failure(e: CutError) -> Failure {
     Failure::invalid(e.to_string())
 }
 
-fn polygon_failure(e: PolygonError, arg: &str) -> Failure {
+pub(super) fn polygon_failure(e: PolygonError, arg: &str) -> Failure {
     Failure::invalid(format!("argument `{arg}`: {e}"))
 }
 
@@ -180,7 +180,7 @@ fn polygon_failure(e: PolygonError, arg: &str) -> Failure {
 ///
 /// # Safety
 /// A non-NULL `xyz` must point to `3 x n` readable doubles.
-unsafe fn points(xyz: *const f64, n: usize, arg: &str) -> FfiResult<Vec<DVec3>> {
+pub(super) unsafe fn points(xyz: *const f64, n: usize, arg: &str) -> FfiResult<Vec<DVec3>> {
     // SAFETY: forwarded contract.
     let flat: &[f64] = unsafe { slice(xyz, flat_len(n, 3, "points")?, arg) }?;
     Ok(flat

@@ -3,15 +3,17 @@
 //! cut into variable-resolution meshes: by threshold, focus region and budget, from
 //! scratch or kept up to date incrementally by an `mtcut_frontier`.
 
+use super::cut::{cut_failure, mtcut_cut_stats, points, polygon_failure};
 use super::guard::{Out, c_str, deref, deref_mut, run, run_count};
 use super::mesh::{mesh_ref, mtcut_mesh, path_arg};
 use super::status::{
     Failure, FfiResult, MTCUT_STATUS_CANCELLED, MTCUT_STATUS_INTERNAL_PANIC,
-    MTCUT_STATUS_INVALID_MESH, MTCUT_STATUS_IO_ERROR, MTCUT_STATUS_PARSE_ERROR,
-    MTCUT_STATUS_UNSUPPORTED_FORMAT, mtcut_status,
+    MTCUT_STATUS_INVALID_MESH, MTCUT_STATUS_IO_ERROR, MTCUT_STATUS_NOT_FOUND,
+    MTCUT_STATUS_PARSE_ERROR, MTCUT_STATUS_UNSUPPORTED_FORMAT, mtcut_status,
 };
 use super::versioned::{Versioned, VersionedOut, read_optional};
-use crate::geom::{Aabb, DVec3};
+use crate::cut::{MtCutStats, MtCutter};
+use crate::geom::{Aabb, CutPolygon, DVec3};
 use crate::mesh::FragmentId;
 use crate::mt::{
     BoundaryError, BuildError, BuildOptions, ErrorMetric, ExtractError, ExtractOptions,
@@ -204,6 +206,117 @@ pub unsafe extern "C" fn mtcut_mt_build(
         let (mt, _) =
             Mt::build_with_progress(mesh, &build, &mut progress).map_err(build_failure)?;
         out.write(Box::into_raw(Box::new(mtcut_mt { mt: Arc::new(mt) })));
+        Ok(())
+    })
+}
+
+impl mtcut_cut_stats {
+    /// A cut of the model in the plain-mesh statistics (the counts are over every level);
+    /// `tets_after` and `vertices_after` are the model's, as `mtcut_mt_statistics` counts
+    /// them (every level, no ghosts); the build and component times zero.
+    fn of_mt(s: &MtCutStats, mt: &Mt) -> mtcut_cut_stats {
+        mtcut_cut_stats {
+            struct_size: size_of::<mtcut_cut_stats>(),
+            tets_tested: s.tets_tested,
+            tets_candidate: s.tets_candidate,
+            tets_cut: s.tets_cut,
+            tets_created: s.tets_created,
+            vertices_added: s.vertices_added,
+            cut_points: s.cut_points,
+            face_points: s.face_points,
+            vertex_copies: s.vertex_copies,
+            vertices_snapped: s.vertices_snapped,
+            tets_after: mt.summary().pool_tets,
+            vertices_after: mt.nb_vertices(),
+            components: s.components,
+            seconds_build: 0.0,
+            seconds_cut: s.time.total,
+            seconds_components: 0.0,
+        }
+    }
+}
+
+/// Cuts every level of detail of the model with the planar convex polygon whose
+/// `n_points` corners, in order around it, are at `polygon_xyz` (paper section 3): every
+/// tet of every level the polygon crosses is replaced, the fragments it separates are
+/// split, and a body cut straight through becomes independent models in the same handle
+/// (`mtcut_mt_statistics` counts them as components). Polygon rules as in
+/// `mtcut_mesh_cut`. `stats_or_null`, if given, receives the counts over all levels
+/// (`tets_after`/`vertices_after`: the model's tets and vertices over all levels).
+///
+/// The result is checked exhaustively (`Mt::validate`, linear in the model's size) before
+/// it replaces the model: a cut the MT update cannot yet represent validly (sequences of
+/// cuts crossing earlier ones can hit this; see the cut module's "Limits") gives
+/// `MTCUT_STATUS_INVALID_MESH` naming the first violation, and the model is unchanged.
+/// Frontiers made earlier keep extracting from the model as it was when they were made.
+///
+/// # Safety
+/// `mt` must be a live model handle used by no other thread during the call;
+/// `polygon_xyz` readable for `3 x n_points` doubles; a non-NULL `stats_or_null` writable
+/// with its `struct_size` set.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mtcut_mt_cut(
+    mt: *mut mtcut_mt,
+    polygon_xyz: *const f64,
+    n_points: usize,
+    stats_or_null: *mut mtcut_cut_stats,
+) -> mtcut_status {
+    run("mtcut_mt_cut", || {
+        // SAFETY: the caller's contract, forwarded to the checks.
+        let (handle, corners, stats) = unsafe {
+            (
+                deref_mut(mt, "mt")?,
+                points(polygon_xyz, n_points, "polygon_xyz")?,
+                Out::optional(stats_or_null, "stats_or_null")?,
+            )
+        };
+        let stats = stats.map(VersionedOut::new).transpose()?;
+        let polygon = CutPolygon::new(&corners).map_err(|e| polygon_failure(e, "polygon_xyz"))?;
+        // The cut works on a copy, so a failure at any point leaves the caller's model
+        // (and the frontiers sharing it) as it was.
+        let mut cutter =
+            MtCutter::new(Mt::clone(&handle.mt), MtCutter::DEFAULT_OPTIONS).map_err(cut_failure)?;
+        let result = cutter.cut(&polygon).map_err(cut_failure)?;
+        let cut = cutter.into_mt();
+        let report = cut.validate();
+        if !report.is_valid() {
+            return Err(Failure::new(
+                MTCUT_STATUS_INVALID_MESH,
+                format!("the cut would leave the model invalid ({report}); the model is unchanged"),
+            ));
+        }
+        let c_stats = mtcut_cut_stats::of_mt(&result, &cut);
+        handle.mt = Arc::new(cut);
+        if let Some(out) = stats {
+            out.write(c_stats);
+        }
+        Ok(())
+    })
+}
+
+/// Component `k` (from 0; `mtcut_mt_statistics` counts them) of a model that cuts
+/// separated into independent models, as a model of its own: `*out` receives a new
+/// handle. `MTCUT_STATUS_NOT_FOUND` when `k` is not below the count.
+///
+/// # Safety
+/// `mt` must be a live model handle; `out` a writable pointer.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mtcut_mt_component(
+    mt: *const mtcut_mt,
+    k: usize,
+    out: *mut *mut mtcut_mt,
+) -> mtcut_status {
+    run("mtcut_mt_component", || {
+        // SAFETY: the caller's contract, forwarded to the checks.
+        let (mt, out) = unsafe { (mt_ref(mt)?, Out::new(out, "out")?) };
+        let n = mt.nb_components();
+        let part = mt.component(k).ok_or_else(|| {
+            Failure::new(
+                MTCUT_STATUS_NOT_FOUND,
+                format!("argument `k`: component {k} asked for, the model has {n}"),
+            )
+        })?;
+        out.write(Box::into_raw(Box::new(mtcut_mt { mt: Arc::new(part) })));
         Ok(())
     })
 }
