@@ -34,6 +34,32 @@ fn each_shared_mesh_gives_a_valid_mt() {
 }
 
 #[test]
+fn the_summary_brackets_the_thresholds() {
+    for name in MESHES {
+        let (input, mt, _) = built(name);
+        let s = mt.summary();
+        assert_eq!(s.finest_tets, input.nb_tets());
+        let steps: Vec<f64> = (0..mt.nb_fragments())
+            .map(FragmentId::from_usize)
+            .filter(|&f| mt.fragment_kind(f) == FragmentKind::Collapse)
+            .map(|f| mt.fragment_error(f))
+            .collect();
+        assert_eq!(
+            s.min_error,
+            steps.iter().copied().fold(f64::INFINITY, f64::min)
+        );
+        assert_eq!(s.max_error, steps.iter().copied().fold(0.0, f64::max));
+        // Below the smallest step error: the finest mesh; at the largest: the coarsest.
+        let below = mt
+            .extract(&ExtractOptions::threshold(0.5 * s.min_error))
+            .unwrap();
+        assert_eq!(below.mesh.nb_tets(), s.finest_tets, "{name}");
+        let top = mt.extract(&ExtractOptions::threshold(s.max_error)).unwrap();
+        assert_eq!(top.mesh.nb_tets(), s.coarsest_tets, "{name}");
+    }
+}
+
+#[test]
 fn finest_frontier_is_the_input_mesh() {
     for name in MESHES {
         let (input, mt, _) = built(name);

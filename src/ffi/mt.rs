@@ -14,10 +14,9 @@ use super::status::{
 use super::versioned::{Versioned, VersionedOut, read_optional};
 use crate::cut::{MtCutStats, MtCutter};
 use crate::geom::{Aabb, CutPolygon, DVec3};
-use crate::mesh::FragmentId;
 use crate::mt::{
-    BoundaryError, BuildError, BuildOptions, ErrorMetric, ExtractError, ExtractOptions,
-    FragmentKind, Frontier, Mt, MtFileError, MtFileErrorKind, Region,
+    BoundaryError, BuildError, BuildOptions, ErrorMetric, ExtractError, ExtractOptions, Frontier,
+    Mt, MtFileError, MtFileErrorKind, Region,
 };
 use std::ffi::{c_char, c_int, c_void};
 use std::mem::offset_of;
@@ -438,15 +437,6 @@ pub unsafe extern "C" fn mtcut_mt_statistics(
         let (mt, out) = unsafe { (mt_ref(mt)?, Out::new(stats, "stats")?) };
         let out = VersionedOut::new(out)?;
         let s = mt.summary();
-        let steps = (0..mt.nb_fragments())
-            .map(FragmentId::from_usize)
-            .filter(|&f| mt.fragment_kind(f) == FragmentKind::Collapse)
-            .map(|f| mt.fragment_error(f));
-        let (min_error, max_error) = steps
-            .fold(None, |r: Option<(f64, f64)>, e| {
-                Some(r.map_or((e, e), |(lo, hi)| (lo.min(e), hi.max(e))))
-            })
-            .unwrap_or((0.0, 0.0));
         out.write(mtcut_mt_stats {
             struct_size: size_of::<mtcut_mt_stats>(),
             vertices: s.vertices,
@@ -456,8 +446,8 @@ pub unsafe extern "C" fn mtcut_mt_statistics(
             fragments: s.fragments,
             dag_depth: s.dag_depth as usize,
             components: s.components,
-            min_error,
-            max_error,
+            min_error: s.min_error,
+            max_error: s.max_error,
             heap_bytes: s.heap_bytes,
         });
         Ok(())

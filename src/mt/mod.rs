@@ -544,6 +544,17 @@ impl Mt {
             .copied()
             .filter(|e| e.is_finite())
             .fold(0.0, f64::max);
+        let min_error = (0..self.nb_fragments())
+            .filter(|&f| self.kind[f] == FragmentKind::Collapse)
+            .map(|f| self.error[f])
+            .reduce(f64::min)
+            .unwrap_or(0.0);
+        let finest_tets = self
+            .roots()
+            .iter()
+            .flat_map(|&r| self.created_tets(r))
+            .filter(|&t| !self.is_ghost(t))
+            .count();
         let bytes = self.heap_bytes();
         MtSummary {
             vertices: self.nb_vertices(),
@@ -554,7 +565,9 @@ impl Mt {
             components: self.nb_components(),
             dag_depth: self.dag_depth(),
             input_tets: self.info.input_tets,
+            finest_tets,
             coarsest_tets: self.coarsest_tets(),
+            min_error,
             max_error,
             heap_bytes: bytes,
             bytes_per_input_tet: bytes as f64 / self.info.input_tets.max(1) as f64,
@@ -660,8 +673,14 @@ pub struct MtSummary {
     pub components: usize,
     pub dag_depth: u32,
     pub input_tets: usize,
+    /// Tets of the finest mesh (the input's, plus what cuts made of them) and of the
+    /// coarsest.
+    pub finest_tets: usize,
     pub coarsest_tets: usize,
-    /// Largest finite fragment error.
+    /// Smallest error of a simplification step (0 when there is none): thresholds below it
+    /// extract the finest mesh.
+    pub min_error: f64,
+    /// Largest finite fragment error: thresholds at or above it extract the coarsest mesh.
     pub max_error: f64,
     pub heap_bytes: usize,
     pub bytes_per_input_tet: f64,
@@ -680,7 +699,9 @@ impl MtSummary {
             "components": self.components,
             "dag_depth": self.dag_depth,
             "input_tets": self.input_tets,
+            "finest_tets": self.finest_tets,
             "coarsest_tets": self.coarsest_tets,
+            "min_error": self.min_error,
             "max_error": self.max_error,
             "heap_bytes": self.heap_bytes,
             "bytes_per_input_tet": self.bytes_per_input_tet,
