@@ -199,7 +199,7 @@ typedef struct mtcut_cut_options {
    */
   mtcut_cut_scheme scheme;
   /**
-   * Snapping tolerance, relative to each vertex's longest incident edge, in [0, 0.25]: a
+   * Snapping tolerance, relative to each vertex's longest incident edge, in [1e-9, 0.25]: a
    * vertex closer than that to the cut is taken to lie on it, so every cut point divides
    * its edge at a parameter in (snap, 1 - snap) and no child is a sliver. The cut
    * surface may then pass up to snap x edge length off the plane; no vertex moves.

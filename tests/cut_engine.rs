@@ -8,7 +8,8 @@ mod cut_common;
 
 use cut_common::*;
 use mtcut::cut::{
-    CUT_COLUMN, Components, CutCase, CutError, CutOptions, Cutter, Scheme, VertexOrigin, cut_mesh,
+    CUT_COLUMN, Components, CutCase, CutError, CutOptions, Cutter, MIN_SNAP, Scheme, VertexOrigin,
+    cut_mesh,
 };
 use mtcut::geom::{CutPolygon, DVec3, PolygonError, Tolerance, scalpel_sweep};
 use mtcut::mesh::{Attribute, TetMesh, ViolationKind};
@@ -327,6 +328,40 @@ fn bad_input_is_refused_with_a_reason() {
         "{err}"
     );
     assert!(m == before, "a refused cut leaves the mesh alone");
+    // No snapping at all is refused: a plane through vertices up to rounding would cut
+    // their edges at their very position (flat tets; a unit-cube case found by the C API's
+    // random test). The smallest accepted value cuts that case validly.
+    let cube = TetMesh::from_arrays(
+        [0, 1, 2, 3, 4, 5, 6, 7]
+            .map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
+            .to_vec(),
+        vec![
+            [0, 1, 3, 7],
+            [0, 1, 5, 7],
+            [0, 2, 3, 7],
+            [0, 2, 6, 7],
+            [0, 4, 5, 7],
+            [0, 4, 6, 7],
+        ],
+    )
+    .expect("cube")
+    .0;
+    let through_vertices = CutPolygon::new(&[
+        DVec3::new(-1.875, -4.03125, -4.5),
+        DVec3::new(4.125, -2.53125, -1.5),
+        DVec3::new(1.875, 4.03125, 4.5),
+        DVec3::new(-4.125, 2.53125, 1.5),
+    ])
+    .expect("planar convex quad");
+    let mut m = cube.clone();
+    let none = CutOptions::DEFAULT.with_snap(Tolerance { relative: 0.0 });
+    assert!(cut_mesh(&mut m, &through_vertices, &none).is_err());
+    assert!(m == cube);
+    let least = CutOptions::DEFAULT.with_snap(Tolerance { relative: MIN_SNAP });
+    let r = cut_mesh(&mut m, &through_vertices, &least).expect("cut");
+    assert!(r.stats.tets_cut > 0);
+    let report = m.validate();
+    assert!(report.is_valid(), "{report}");
     assert!(Cutter::new(before, CutOptions::DEFAULT.with_face_point_margin(-1.0)).is_err());
 }
 

@@ -639,9 +639,11 @@ fn random_cuts_and_options_never_panic() {
         let mut o = cut_options();
         match rng.below(8) {
             0 => o.scheme = rng.below(4) as u32,
-            // Not 0: with no snapping, a plane through vertices exactly gives flat tets
-            // (a cut engine issue, reported: seed 131 of this test with snap 0).
-            1 => o.snap = [0.05, 0.25, 0.26, -0.1, f64::NAN, f64::INFINITY][rng.below(6) as usize],
+            // 0 is refused (below the smallest snap, flat tets would result: seed 131).
+            1 => {
+                o.snap = [0.0, 1e-9, 0.05, 0.25, 0.26, -0.1, f64::NAN, f64::INFINITY]
+                    [rng.below(8) as usize]
+            }
             2 => o.face_point_margin = rng.coordinate(),
             3 => o.struct_size = rng.below(2 * size_of::<mtcut_cut_options>() as u64) as usize,
             _ => {}

@@ -22,6 +22,11 @@ impl Scheme {
     }
 }
 
+/// The smallest `snap` accepted: rounding in the vertex-to-plane distance stays far below
+/// it for meshes whose coordinates are not many orders of magnitude larger than their
+/// edges. With 0, a plane through vertices exactly (up to rounding) made flat tets.
+pub const MIN_SNAP: f64 = 1e-9;
+
 /// Options of a cut. Build from [`CutOptions::DEFAULT`] with the `with_*` methods.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -42,7 +47,8 @@ pub struct CutOptions {
     /// 0.05; the smallest child/parent volume ratio is 5e-3 with 0.2 (1.25e-4 with 0.05).
     /// The cost: a crack surface bent towards the snapped vertices, whose area differs from
     /// the plane section's by up to 9% with 0.2 (tests/cut_vtk.rs prints it). Values must
-    /// be in [0, 0.25].
+    /// be in [[`MIN_SNAP`], 0.25]: below that, a vertex on the plane up to rounding would
+    /// not be snapped and its edges would be cut at its very position (flat tets).
     pub snap: Tolerance,
     /// Face points (crack tips, paper Fig. 4c–e) are placed where C's contour crosses the
     /// segment where the plane meets their face, but no closer to its ends than this
@@ -103,11 +109,13 @@ impl CutOptions {
     /// Checks every value against its documented range.
     pub fn check(&self) -> Result<(), CutError> {
         let s = self.snap.relative;
-        if !(s.is_finite() && (0.0..=0.25).contains(&s)) {
+        if !(s.is_finite() && (MIN_SNAP..=0.25).contains(&s)) {
             return Err(CutError::InvalidOption {
                 option: "snap",
                 value: s,
-                expected: "a fraction of the local edge length in [0, 0.25]",
+                expected: "a fraction of the local edge length in [1e-9, 0.25] (below 1e-9 \
+                           a vertex on the plane up to rounding is not snapped, and flat \
+                           tets result)",
             });
         }
         let m = self.face_point_margin;

@@ -28,7 +28,7 @@ pub struct mtcut_cut_options {
     pub struct_size: usize,
     /// An `MTCUT_CUT_SCHEME_*` value. Default `MTCUT_CUT_SCHEME_LUT`.
     pub scheme: mtcut_cut_scheme,
-    /// Snapping tolerance, relative to each vertex's longest incident edge, in [0, 0.25]: a
+    /// Snapping tolerance, relative to each vertex's longest incident edge, in [1e-9, 0.25]: a
     /// vertex closer than that to the cut is taken to lie on it, so every cut point divides
     /// its edge at a parameter in (snap, 1 - snap) and no child is a sliver. The cut
     /// surface may then pass up to snap x edge length off the plane; no vertex moves.
