@@ -406,3 +406,114 @@ fn after_a_sequence_of_cuts_the_output_is_valid_or_absent() {
     }
     eprintln!("{failed} of 4 sequences of 5 cuts refused");
 }
+
+#[test]
+fn a_whole_focus_extraction_of_a_model_cut_through_is_valid_or_refused_for_its_parts() {
+    let (cut, _) = cut_through();
+    let dir = scratch("cli_mt_cut whole focus");
+    let b = liver().bbox();
+    let c = b.center();
+    let focus = format!("{:?},{:?},{:?},{:?}", c.x, c.y, c.z, 0.2 * b.diagonal());
+    let out = dir.join("focus.vtu");
+    let args = [
+        "extract",
+        s(cut),
+        "--threshold",
+        "inf",
+        "--focus",
+        &focus,
+        "--focus-threshold",
+        "0",
+        "-o",
+        s(&out),
+    ];
+    // Each side of the crack is refined as its own component, so the two parts may meet
+    // there at different resolutions, which as one mesh is not valid: refused, pointing at
+    // --component, with nothing written.
+    let o = mtcut(&args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    if o.status.success() {
+        read_valid(&out);
+    } else {
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        for needle in [
+            "2 components meet along a cut at different resolutions",
+            "each part on its own is valid",
+            "--component K (0 to 1)",
+            "nothing written",
+        ] {
+            assert!(err.contains(needle), "lacks '{needle}': {err}");
+        }
+        assert!(!out.exists());
+    }
+    // Each component on its own: valid.
+    for k in ["0", "1"] {
+        let mut a = args.to_vec();
+        a.extend_from_slice(&["--component", k]);
+        ok(&a);
+        read_valid(&out);
+    }
+}
+
+#[test]
+fn focus_extractions_after_a_partial_cut_are_valid_or_absent() {
+    let b = liver().bbox();
+    let c = b.center();
+    let r = 0.2 * b.diagonal();
+    let dir = scratch("cli_mt_cut partial focus");
+    let model = dir.join("slit.mt");
+    // A slit: a square in the plane y = centre, ending inside the body.
+    let j = json(&[
+        "cut",
+        s(liver_model()),
+        "--polygon",
+        &square(c, DVec3::X * r, DVec3::Z * r),
+        "-o",
+        s(&model),
+        "--json",
+    ]);
+    assert_eq!(j["components"], 1, "a slit does not separate: {j}");
+    let mut refused = 0;
+    let out = dir.join("focus.vtu");
+    for (k, f) in [(-1.0, 0.3), (1.0, 0.3), (0.0, 0.1), (0.0, 0.5)]
+        .iter()
+        .enumerate()
+    {
+        let centre = c + DVec3::X * (f.0 * r);
+        let focus = format!("{:?},{:?},{:?},{:?}", centre.x, centre.y, centre.z, f.1 * r);
+        let o = mtcut(&[
+            "extract",
+            s(&model),
+            "--threshold",
+            "inf",
+            "--focus",
+            &focus,
+            "--focus-threshold",
+            "0",
+            "-o",
+            s(&out),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!err.contains("panicked"), "{err}");
+        if o.status.success() {
+            read_valid(&out);
+            std::fs::remove_file(&out).unwrap();
+        } else {
+            // The known limit: the lips of the slit extracted at different resolutions.
+            refused += 1;
+            assert_eq!(o.status.code(), Some(1), "focus {k}: {err}");
+            assert!(
+                err.contains("the extracted mesh is not valid") && err.contains("nothing written"),
+                "focus {k}: {err}"
+            );
+            assert!(!out.exists(), "focus {k}");
+        }
+    }
+    eprintln!("{refused} of 4 focus extractions after a partial cut refused");
+    // Uniform thresholds stay valid after the partial cut.
+    for t in ["0", "1e-5", "1e-4", "inf"] {
+        ok(&["extract", s(&model), "--threshold", t, "-o", s(&out)]);
+        read_valid(&out);
+    }
+}
