@@ -517,3 +517,21 @@ fn focus_extractions_after_a_partial_cut_are_valid_or_absent() {
         read_valid(&out);
     }
 }
+
+#[test]
+fn a_polygon_missing_the_model_changes_nothing_and_warns() {
+    let dir = scratch("cli_mt_cut miss");
+    let out = dir.join("same.mt");
+    let b = liver().bbox();
+    let far = square(b.max + DVec3::ONE * b.diagonal(), DVec3::X, DVec3::Y);
+    let o = mtcut(&["cut", s(liver_model()), "--polygon", &far, "-o", s(&out)]);
+    assert!(o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("polygon 0 does not cut the model"), "{err}");
+    let before = json(&["info", s(liver_model()), "--json"]);
+    let after = json(&["info", s(&out), "--json"]);
+    assert_eq!(after["valid"], true);
+    for key in ["vertices", "pool_tets", "fragments", "components"] {
+        assert_eq!(after[key], before[key], "{key}");
+    }
+}

@@ -4,6 +4,9 @@
 //! cell data (creating fragment, its error and level) and each vertex's MT vertex id. With
 //! `--component K`, from independent component K of a cut model only (its fragments and
 //! vertices renumbered from 0, so the ids are those of the component's own MT).
+//!
+//! The extracted mesh is validated before it is written, and an invalid one is refused
+//! with its first problem: extractions of a cut model are not yet valid in every case.
 
 use crate::CliResult;
 use crate::parse::{self, Sphere};
