@@ -233,7 +233,8 @@ fn demo_builds_extracts_cuts_and_lists_its_outputs() {
         "valid      yes",
         "MT ",
         "levels",
-        "cut ",
+        "cut        the MT",
+        "2 parts; valid",
         "demo.pvd",
     ] {
         assert!(text.contains(needle), "lacks '{needle}': {text}");
@@ -253,16 +254,28 @@ fn demo_builds_extracts_cuts_and_lists_its_outputs() {
         assert!(m.point_data.get(mtcut::mt::POINT_VERTEX).is_some());
         assert!(m.cell_data.get(mtcut::mt::CELL_ERROR).is_some());
     }
-    // The cut: two parts, each one piece, adding up to the finest level's volume.
-    let parts: Vec<_> = (0..2)
-        .map(|k| read(&format!("liver-cut-{k}.vtu")))
-        .collect();
-    assert!(!dir.join("liver-cut-2.vtu").exists());
-    let volume: f64 = parts.iter().map(|p| p.volume()).sum();
-    assert!((volume - input.volume()).abs() <= 1e-12 * input.volume());
-    for p in &parts {
-        assert_eq!(mtcut::cut::Components::of(p).count, 1);
+    // The MT cut through: two parts, each one piece at its finest and coarsest level; the
+    // finest parts add up to the input's volume, the coarsest to the uncut coarsest level's.
+    let mut volumes = [0.0, 0.0];
+    for k in 0..2 {
+        for (i, level) in ["finest", "coarsest"].iter().enumerate() {
+            let part = read(&format!("liver-part-{k}-{level}.vtu"));
+            assert_eq!(mtcut::cut::Components::of(&part).count, 1, "{k} {level}");
+            volumes[i] += part.volume();
+        }
     }
+    assert!(!dir.join("liver-part-2-finest.vtu").exists());
+    assert!((volumes[0] - input.volume()).abs() <= 1e-12 * input.volume());
+    assert!((volumes[1] - coarsest.volume()).abs() <= 1e-12 * coarsest.volume());
+    // Every step carries the same arrays (ParaView colours them alike; pvbatch-check.py).
+    let names = |m: &mtcut::mesh::TetMesh| {
+        let mut p: Vec<String> = m.point_data.iter().map(|a| a.name.clone()).collect();
+        let mut c: Vec<String> = m.cell_data.iter().map(|a| a.name.clone()).collect();
+        p.sort();
+        c.sort();
+        (p, c)
+    };
+    let first = names(&finest);
     // The collection lists exactly the .vtu files written, and each exists.
     let pvd = std::fs::read_to_string(dir.join("demo.pvd")).unwrap();
     let listed: Vec<&str> = pvd
@@ -279,11 +292,19 @@ fn demo_builds_extracts_cuts_and_lists_its_outputs() {
     let mut listed_sorted: Vec<String> = listed.iter().map(|s| s.to_string()).collect();
     listed_sorted.sort();
     assert_eq!(listed_sorted, written);
-    assert_eq!(listed.len(), 5);
+    assert_eq!(listed.len(), 7);
+    for name in &listed {
+        assert_eq!(names(&read(name)), first, "{name}");
+    }
     // The model is there, valid, and its finest level is the input.
     let j = info_json(&dir.join("liver.mt"));
     assert_eq!(j["kind"], "mt");
     assert_eq!(j["valid"], true);
     assert_eq!(j["finest_tets"], input.nb_tets());
+    assert_eq!(j["components"], 1);
+    // The cut model too, with its two components.
+    let j = info_json(&dir.join("liver-cut.mt"));
+    assert_eq!(j["valid"], true);
+    assert_eq!(j["components"], 2);
     assert!(dir.join("liver-quality.json").exists());
 }

@@ -1,7 +1,8 @@
 //! `mtcut cut MESH --polygon "x,y,z;x,y,z;x,y,z[;...]" [--polygon ...]... [--scheme
 //! lut|bielser17] -o OUT.vtu [--separate] [--json]`: cuts a plain mesh with planar convex
 //! polygons, in the order given (paper §3–§4), and writes the result whole or one file
-//! per connected component.
+//! per connected component. A model (`.mt`, recognised as `info` does) is cut level by
+//! level instead, see [`crate::cut_model`].
 //!
 //! Every polygon is parsed and checked before the mesh is read, and the result is checked
 //! before anything is written, so a bad polygon or a failed cut writes nothing.
@@ -37,8 +38,8 @@ impl SchemeName {
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Input mesh (.vtu, .node/.ele, .mesh).
-    mesh: PathBuf,
+    /// Input mesh (.vtu, .node/.ele, .mesh) or model (.mt).
+    pub mesh: PathBuf,
     /// A planar convex cutting polygon: its corners in order, "x,y,z;x,y,z;x,y,z[;...]".
     /// Repeat to cut several times; polygons are applied in the order given and counted
     /// from 0 in messages.
@@ -48,25 +49,25 @@ pub struct Args {
         required = true,
         allow_hyphen_values = true
     )]
-    polygon: Vec<String>,
-    /// Replacement scheme for cut tets.
+    pub polygon: Vec<String>,
+    /// Replacement scheme for cut tets (a model is always cut with the tables).
     #[arg(long, value_enum, default_value = "lut")]
-    scheme: SchemeName,
+    pub scheme: SchemeName,
     /// The mesh to write (.vtu or .node/.ele); with --separate, the name the parts'
-    /// names are made from (OUT-0.vtu, OUT-1.vtu, ...).
+    /// names are made from (OUT-0.vtu, OUT-1.vtu, ...). For a model: the cut model (.mt).
     #[arg(short, long)]
-    output: PathBuf,
+    pub output: PathBuf,
     /// Write each connected component to its own file (OUT-0, OUT-1, ... in the order of
-    /// their lowest tet) instead of one file.
+    /// their lowest tet) instead of one file. Meshes only.
     #[arg(long)]
-    separate: bool,
+    pub separate: bool,
     /// Print one JSON object on stdout instead of text.
     #[arg(long)]
-    json: bool,
+    pub json: bool,
 }
 
 /// How messages name polygon `i` (0-based) of `n`: "polygon 1 (2nd of 3, "…")".
-fn polygon_name(i: usize, n: usize, text: &str) -> String {
+pub fn polygon_name(i: usize, n: usize, text: &str) -> String {
     let k = i + 1;
     let suffix = match (k % 10, k % 100) {
         (1, r) if r != 11 => "st",
@@ -127,6 +128,9 @@ impl Parts {
 }
 
 pub fn run(args: Args) -> CliResult {
+    if crate::info::is_model(&args.mesh) {
+        return crate::cut_model::run(args);
+    }
     parse::mesh_output(&args.output)?;
     let polys = polygons(&args.polygon)?;
     let t_read = Instant::now();

@@ -1,19 +1,24 @@
 //! `mtcut demo [-o DIR]`: the main job on the embedded default model (a liver meshed by
 //! TetGen from CGAL's segmented CT image; see assets/README.md), needing no files and no
 //! system packages: check the model, build its Multi-Tessellation (paper §2), extract
-//! three levels of detail, cut the finest straight through (paper §3–§4) and write it all
-//! with a ParaView collection listing the outputs.
+//! three levels of detail, cut the MT straight through (every level and the DAG, paper
+//! §3), extract the finest and the coarsest level of each part, and write it all with a
+//! ParaView collection listing the outputs.
+//!
+//! Every step of the collection is an MT extraction, so all carry the same arrays (the
+//! MT's cell and point columns; a cut copies them onto the tets and vertices it makes),
+//! as ParaView needs to colour them alike. Everything is computed and checked before the
+//! first file is written.
 
 use crate::CliResult;
 use crate::build::{build_with_bar, progress_bar};
-use crate::cut::{Parts, part_path};
 use crate::info::MeshInfo;
 use flate2::read::GzDecoder;
-use mtcut::cut::{CUT_COLUMN, CutOptions, CutStats, VertexOrigin, cut_mesh};
+use mtcut::cut::MtCutter;
 use mtcut::geom::{Aabb, CutPolygon, DVec3};
 use mtcut::io::{PvdEntry, parse_tetgen, write_mesh, write_pvd};
-use mtcut::mesh::{Attribute, ImportReport, TetMesh};
-use mtcut::mt::{BuildOptions, ExtractOptions, POINT_VERTEX};
+use mtcut::mesh::{ImportReport, TetMesh};
+use mtcut::mt::{BuildOptions, ExtractOptions, Extraction};
 use std::error::Error;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -53,59 +58,29 @@ fn demo_polygon(bbox: &Aabb) -> Result<CutPolygon, Box<dyn Error>> {
     Ok(CutPolygon::new(&corners)?)
 }
 
-/// The demo's cut of the finest level, into its connected parts. Today this is the
-/// plain-mesh engine on the finest extraction (which is exactly the input mesh); when the
-/// MT itself can be cut, this function becomes "cut the MT, extract its finest level" and
-/// nothing else in the demo changes.
-fn cut_finest(
-    finest: &TetMesh,
-    polygon: &CutPolygon,
-) -> Result<(TetMesh, CutStats), Box<dyn Error>> {
-    let mut mesh = finest.clone();
-    let result = cut_mesh(&mut mesh, polygon, &CutOptions::DEFAULT)?;
-    // MT vertex ids are not quantities to interpolate: a copy of a vertex the cut passes
-    // through is still that MT vertex; a point the cut made on an edge or a face is none
-    // (-1). The column stays, so every step of demo.pvd carries the same arrays.
-    if let Some(ids) = mesh.point_data.get_mut(POINT_VERTEX) {
-        let first = result.first_new_vertex.idx();
-        for (k, origin) in result.origins.iter().enumerate() {
-            ids.values[first + k] = match origin {
-                VertexOrigin::Copy { of } => ids.values[of.idx()],
-                VertexOrigin::Edge { .. } | VertexOrigin::Face { .. } => -1.0,
-            };
-        }
-    }
-    Ok((mesh, result.stats))
-}
-
 /// Writes `mesh` to `dir/name` and returns the path relative to `dir` (for the .pvd).
 fn write_in(dir: &Path, name: &str, mesh: &TetMesh) -> Result<PathBuf, Box<dyn Error>> {
     write_mesh(dir.join(name), mesh)?;
     Ok(PathBuf::from(name))
 }
 
+/// One part of the cut model: its finest and coarsest extractions.
+struct Part {
+    finest: Extraction,
+    coarsest: Extraction,
+}
+
 pub fn run(args: Args) -> CliResult {
     let start = Instant::now();
     let dir = &args.output;
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let (mesh, report) = liver()?;
-
-    // The model and its quality report.
     let info = MeshInfo::of(&mesh, report);
-    let quality = dir.join("liver-quality.json");
-    std::fs::write(
-        &quality,
-        serde_json::to_string_pretty(&info.to_json())? + "\n",
-    )
-    .map_err(|e| format!("{}: {e}", quality.display()))?;
     println!("embedded model: liver");
     info.print_text();
 
     // The Multi-Tessellation.
     let bar = progress_bar(false);
     let (mt, build) = build_with_bar(&mesh, &BuildOptions::DEFAULT, &bar)?;
-    let model = dir.join("liver.mt");
-    mt.save(&model)?;
 
     // Three levels of detail: the middle one has the geometric mean of the extremes' sizes,
     // the best mesh within that budget.
@@ -113,6 +88,46 @@ pub fn run(args: Args) -> CliResult {
     let coarsest = mt.extract(&ExtractOptions::COARSEST)?;
     let middle_budget = ((finest.stats.tets as f64) * (coarsest.stats.tets as f64)).sqrt() as usize;
     let middle = mt.extract(&ExtractOptions::FINEST.with_budget(Some(middle_budget)))?;
+
+    // A cut of the MT straight through, checked: the MT cut's known limits concern
+    // sequences of cuts, but a broken model must never be written, so the demo stops here
+    // with the first violation if this one fails.
+    let polygon = demo_polygon(&mesh.bbox())?;
+    let mut cutter = MtCutter::new(mt.clone(), MtCutter::DEFAULT_OPTIONS)?;
+    let cut_stats = cutter.cut(&polygon)?;
+    let t_validate = Instant::now();
+    let validation = cutter.mt().validate();
+    let validate_seconds = t_validate.elapsed().as_secs_f64();
+    if !validation.is_valid() {
+        return Err(format!(
+            "the MT cut of the demo plane left an invalid model, nothing written: {validation}"
+        )
+        .into());
+    }
+    let cut = cutter.into_mt();
+    let parts = cut
+        .components()
+        .iter()
+        .map(|c| {
+            Ok(Part {
+                finest: c.extract(&ExtractOptions::FINEST)?,
+                coarsest: c.extract(&ExtractOptions::COARSEST)?,
+            })
+        })
+        .collect::<Result<Vec<Part>, Box<dyn Error>>>()?;
+
+    // Everything checked: write.
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let quality = dir.join("liver-quality.json");
+    std::fs::write(
+        &quality,
+        serde_json::to_string_pretty(&info.to_json())? + "\n",
+    )
+    .map_err(|e| format!("{}: {e}", quality.display()))?;
+    let model = dir.join("liver.mt");
+    mt.save(&model)?;
+    let cut_model = dir.join("liver-cut.mt");
+    cut.save(&cut_model)?;
     let mut entries = Vec::new();
     for (step, (name, level)) in [
         ("liver-finest.vtu", &finest),
@@ -122,33 +137,26 @@ pub fn run(args: Args) -> CliResult {
     .into_iter()
     .enumerate()
     {
-        // The levels carry the cut column too (0: made by no cut), so every step of the
-        // .pvd has the same arrays and ParaView can colour them all alike.
-        let mut level = level.mesh.clone();
-        let zeros = vec![0.0; level.nb_tets()];
-        level.cell_data.insert(
-            Attribute::new(CUT_COLUMN, 1, zeros).ok_or("the cut column could not be made")?,
-        );
         entries.push(PvdEntry {
             timestep: step as f64,
             part: 0,
-            file: write_in(dir, name, &level)?,
+            file: write_in(dir, name, &level.mesh)?,
         });
     }
-
-    // A cut straight through the finest level; each part in its own file.
-    let polygon = demo_polygon(&mesh.bbox())?;
-    let (cut, cut_stats) = cut_finest(&finest.mesh, &polygon)?;
-    let parts = Parts::of(&cut);
-    for (k, part) in parts.components.extract_all(&cut).iter().enumerate() {
-        let name = part_path(Path::new("liver-cut.vtu"), k);
-        let name = name.to_string_lossy();
-        entries.push(PvdEntry {
-            timestep: 3.0,
-            part: k as u32,
-            file: write_in(dir, &name, part)?,
-        });
+    // Step 3: the parts at their finest level, step 4 at their coarsest.
+    for (k, part) in parts.iter().enumerate() {
+        for (step, level, e) in [
+            (3.0, "finest", &part.finest),
+            (4.0, "coarsest", &part.coarsest),
+        ] {
+            entries.push(PvdEntry {
+                timestep: step,
+                part: k as u32,
+                file: write_in(dir, &format!("liver-part-{k}-{level}.vtu"), &e.mesh)?,
+            });
+        }
     }
+    entries.sort_by(|a, b| a.timestep.total_cmp(&b.timestep).then(a.part.cmp(&b.part)));
     let pvd = dir.join("demo.pvd");
     write_pvd(&pvd, &entries)?;
 
@@ -160,22 +168,42 @@ pub fn run(args: Args) -> CliResult {
         "levels     finest {} tets, middle {} tets (error ≤ {:.3e}), coarsest {} tets",
         finest.stats.tets, middle.stats.tets, middle.stats.max_error, coarsest.stats.tets
     );
-    let sizes: Vec<String> = parts.tets.iter().map(|n| n.to_string()).collect();
     println!(
-        "cut        plane z = {:.3}: {} tets cut, {} created; {} parts ({} tets); volume {} before, {} after",
+        "cut        the MT, plane z = {:.3}: {} fragments involved ({} split), {} tets cut over \
+         all levels, {} created; {} parts; valid; {:.3} s (validate {:.3} s)",
         polygon.points()[0].z,
+        cut_stats.fragments_involved,
+        cut_stats.fragments_split,
         cut_stats.tets_cut,
         cut_stats.tets_created,
-        parts.components.count,
-        sizes.join(" + "),
+        parts.len(),
+        cut_stats.time.total,
+        validate_seconds
+    );
+    let sizes = |f: fn(&Part) -> &Extraction| {
+        parts
+            .iter()
+            .map(|p| f(p).stats.tets.to_string())
+            .collect::<Vec<_>>()
+            .join(" + ")
+    };
+    let volume =
+        |f: fn(&Part) -> &Extraction| parts.iter().map(|p| f(p).mesh.volume()).sum::<f64>();
+    println!(
+        "parts      finest {} tets, volume {} (uncut {}); coarsest {} tets, volume {} (uncut {})",
+        sizes(|p| &p.finest),
+        volume(|p| &p.finest),
         finest.mesh.volume(),
-        cut.volume()
+        sizes(|p| &p.coarsest),
+        volume(|p| &p.coarsest),
+        coarsest.mesh.volume()
     );
     println!(
-        "wrote      {} (open it in ParaView: time steps 0-2 are the levels, 3 the cut parts), \
-         {}, {} and {} .vtu files",
+        "wrote      {} (open it in ParaView: time steps 0-2 are the levels, 3 and 4 the cut \
+         parts at their finest and coarsest), {}, {}, {} and {} .vtu files",
         pvd.display(),
         model.display(),
+        cut_model.display(),
         quality.display(),
         entries.len()
     );

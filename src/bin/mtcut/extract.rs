@@ -1,11 +1,18 @@
 //! `mtcut extract MODEL.mt (--threshold E | --budget N | --level finest|coarsest)
-//! [--focus x,y,z,r --focus-threshold E2] -o OUT.vtu [--json]`: a mesh at the requested
-//! resolution (selective refinement over the DAG, paper §2), written with its cell data
-//! (creating fragment, its error and level) and each vertex's MT vertex id.
+//! [--focus x,y,z,r --focus-threshold E2] [--component K] -o OUT.vtu [--json]`: a mesh at
+//! the requested resolution (selective refinement over the DAG, paper §2), written with its
+//! cell data (creating fragment, its error and level) and each vertex's MT vertex id. With
+//! `--component K`, from independent component K of a cut model only (its fragments and
+//! vertices renumbered from 0, so the ids are those of the component's own MT).
+//!
+//! The extracted mesh is validated before it is written, and an invalid one is refused
+//! with its first problem: extractions of a cut model are not yet valid in every case.
 
 use crate::CliResult;
 use crate::parse::{self, Sphere};
+use mtcut::cut::Components;
 use mtcut::io::write_mesh;
+use mtcut::mesh::Severity;
 use mtcut::mt::{
     CELL_ERROR, CELL_FRAGMENT, CELL_LEVEL, ExtractOptions, Extraction, Mt, POINT_VERTEX, Region,
 };
@@ -50,6 +57,10 @@ pub struct Args {
     /// The error threshold inside the --focus sphere (a number ≥ 0).
     #[arg(long, value_name = "E2", allow_hyphen_values = true, value_parser = parse::threshold, requires = "focus")]
     focus_threshold: Option<f64>,
+    /// Extract from independent component K only (0-based; a model cut straight through
+    /// has several, `mtcut info` counts them).
+    #[arg(long, value_name = "K")]
+    component: Option<usize>,
     /// The mesh to write: .vtu (data arrays by name), or .node/.ele (as unnamed attributes).
     #[arg(short, long)]
     output: PathBuf,
@@ -105,12 +116,74 @@ impl Args {
     }
 }
 
+/// Checks the extraction before it is written: extractions of a cut model are not yet
+/// valid in every case (focus regions after a cut, see `mtcut::cut::MtCutter`'s limits),
+/// and a mesh that does not validate is never written (mtcut itself would not read it
+/// back). The error names the first problem. When the model has several components (a
+/// body cut through), each side of the crack is refined as its own component and the
+/// parts may meet there at different resolutions: the error then says whether each part
+/// on its own is valid, so that `--component K` gives it.
+fn check(mt: &Mt, e: &Extraction) -> Result<(), String> {
+    let problems = e.mesh.validate().lines(Severity::Error);
+    if problems.is_empty() {
+        return Ok(());
+    }
+    let not_valid = |what: String, problems: &[String]| {
+        format!(
+            "{what} is not valid ({} kind(s) of problem, first: {}); nothing written",
+            problems.len(),
+            problems.first().map_or("", String::as_str)
+        )
+    };
+    let (count, of_fragment) = mt.fragment_components();
+    let fragments = match e.mesh.cell_data.get(CELL_FRAGMENT) {
+        Some(f) if count >= 2 => f,
+        _ => return Err(not_valid("the extracted mesh".into(), &problems)),
+    };
+    let label = fragments
+        .values
+        .iter()
+        .map(|&f| of_fragment[f as usize])
+        .collect();
+    let parts = Components { count, label };
+    for k in 0..count {
+        let part = parts.extract(&e.mesh, k).ok_or("component out of range")?;
+        let part_problems = part.validate().lines(Severity::Error);
+        if !part_problems.is_empty() {
+            return Err(not_valid(
+                format!("the part of component {k} in the extracted mesh"),
+                &part_problems,
+            ));
+        }
+    }
+    Err(format!(
+        "the model's {count} components meet along a cut at different resolutions in this \
+         mesh, which as one mesh is not valid ({}); each part on its own is valid: extract \
+         it with --component K (0 to {}); nothing written",
+        problems.first().map_or("", String::as_str),
+        count - 1
+    ))
+}
+
 pub fn run(args: Args) -> CliResult {
     parse::mesh_output(&args.output)?;
     let t_load = Instant::now();
     let mt = Mt::load(&args.model)?;
+    let components = mt.nb_components();
+    let mt = match args.component {
+        None => mt,
+        Some(k) => mt.component(k).ok_or_else(|| {
+            format!(
+                "{}: component {k} out of range: the model has {components} component(s), numbered from 0",
+                args.model.display()
+            )
+        })?,
+    };
     let load_seconds = t_load.elapsed().as_secs_f64();
     let e = mt.extract(&args.options())?;
+    let t_check = Instant::now();
+    check(&mt, &e).map_err(|m| format!("{}: {m}", args.model.display()))?;
+    let check_seconds = t_check.elapsed().as_secs_f64();
     let t_write = Instant::now();
     write_mesh(&args.output, &e.mesh)?;
     let write_seconds = t_write.elapsed().as_secs_f64();
@@ -127,15 +200,13 @@ pub fn run(args: Args) -> CliResult {
             o.insert("model".into(), json!(args.model.display().to_string()));
             o.insert("output".into(), json!(args.output.display().to_string()));
             o.insert("request".into(), args.request_json());
+            o.insert("component".into(), json!(args.component));
+            o.insert("components".into(), json!(components));
             o.insert("volume".into(), json!(volume));
             o.insert("input_tets".into(), json!(mt.info().input_tets));
             o.insert("load_seconds".into(), json!(load_seconds));
             o.insert("write_seconds".into(), json!(write_seconds));
-            o.insert(
-                "cell_data".into(),
-                json!([CELL_FRAGMENT, CELL_ERROR, CELL_LEVEL]),
-            );
-            o.insert("point_data".into(), json!([POINT_VERTEX]));
+            o.insert("check_seconds".into(), json!(check_seconds));
         }
         println!("{j}");
     } else {
@@ -153,11 +224,18 @@ fn print_text(
     write_seconds: f64,
 ) {
     let s = &e.stats;
-    println!(
-        "extracted  {} from {}",
-        args.output.display(),
-        args.model.display()
-    );
+    match args.component {
+        Some(k) => println!(
+            "extracted  {} from component {k} of {}",
+            args.output.display(),
+            args.model.display()
+        ),
+        None => println!(
+            "extracted  {} from {}",
+            args.output.display(),
+            args.model.display()
+        ),
+    }
     println!(
         "mesh       {} tets ({:.1}% of the finest {}), {} vertices, volume {}",
         s.tets,

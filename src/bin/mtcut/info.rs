@@ -130,7 +130,7 @@ impl MeshInfo {
 
 /// Whether `path` is to be read as an `.mt` model: by its first bytes, or by its name when
 /// it cannot be read (so a missing `x.mt` is reported by the model loader).
-fn is_model(path: &Path) -> bool {
+pub fn is_model(path: &Path) -> bool {
     let mut head = [0u8; 8];
     match std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut head)) {
         Ok(()) if head == MT_MAGIC => true,

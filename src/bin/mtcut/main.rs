@@ -4,6 +4,7 @@
 mod build;
 mod convert;
 mod cut;
+mod cut_model;
 mod demo;
 mod extract;
 mod info;
@@ -31,7 +32,8 @@ enum Command {
     Build(build::Args),
     /// Extract a mesh at a chosen resolution from an .mt model.
     Extract(extract::Args),
-    /// Cut a mesh with planar convex polygons, applied in order.
+    /// Cut a mesh, or every level of an .mt model, with planar convex polygons, applied in
+    /// order.
     Cut(cut::Args),
     /// Run the main job on the embedded liver model and write the results to a folder.
     Demo(demo::Args),
