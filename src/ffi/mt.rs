@@ -248,6 +248,10 @@ impl mtcut_cut_stats {
 /// cuts crossing earlier ones can hit this; see the cut module's "Limits") gives
 /// `MTCUT_STATUS_INVALID_MESH` naming the first violation, and the model is unchanged.
 /// Frontiers made earlier keep extracting from the model as it was when they were made.
+/// Known limit: after a cut, a focus extraction may give the two lips of the crack
+/// different resolutions; `mtcut_mesh_validate` then reports vertices of one lip lying in
+/// triangles of the other as hanging (uniform thresholds, and focus extractions of one
+/// component from `mtcut_mt_component`, are not affected).
 ///
 /// # Safety
 /// `mt` must be a live model handle used by no other thread during the call;
