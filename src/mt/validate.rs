@@ -94,19 +94,20 @@ impl fmt::Display for MtValidationReport {
         if self.violations.is_empty() {
             return write!(f, "valid MT");
         }
-        let lines: Vec<String> = self
-            .violations
-            .iter()
-            .map(|v| {
-                format!(
-                    "{} × {:?} (first: {})",
-                    v.count,
-                    v.kind,
-                    v.examples.join("; ")
-                )
-            })
-            .collect();
+        let lines: Vec<String> = self.violations.iter().map(|v| v.to_string()).collect();
         write!(f, "invalid MT: {}", lines.join("; "))
+    }
+}
+
+impl fmt::Display for MtViolation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} × {:?} (first: {})",
+            self.count,
+            self.kind,
+            self.examples.join("; ")
+        )
     }
 }
 

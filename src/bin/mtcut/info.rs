@@ -5,8 +5,8 @@
 use crate::CliResult;
 use mtcut::geom::Aabb;
 use mtcut::io::read_mesh;
-use mtcut::mesh::{FragmentId, ImportReport, QualitySummary, Severity, TetMesh};
-use mtcut::mt::{FragmentKind, MT_FILE_VERSION, MT_MAGIC, Mt, MtSummary};
+use mtcut::mesh::{ImportReport, QualitySummary, Severity, TetMesh};
+use mtcut::mt::{MT_FILE_VERSION, MT_MAGIC, Mt, MtSummary};
 use serde_json::{Value, json};
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -143,46 +143,19 @@ pub fn is_model(path: &Path) -> bool {
 /// Everything `info` reports about a model.
 struct ModelInfo {
     summary: MtSummary,
-    /// Tets of the finest meshes (created by the roots).
-    finest_tets: usize,
-    /// Smallest and largest error of a collapse fragment (0, 0 when there is none).
-    error_range: (f64, f64),
     problems: Vec<String>,
 }
 
 impl ModelInfo {
     fn of(mt: &Mt) -> ModelInfo {
-        let finest_tets = mt
-            .roots()
-            .iter()
-            .flat_map(|&r| mt.created_tets(r))
-            .filter(|&t| !mt.is_ghost(t))
-            .count();
-        let errors = (0..mt.nb_fragments())
-            .map(FragmentId::from_usize)
-            .filter(|&f| mt.fragment_kind(f) == FragmentKind::Collapse)
-            .map(|f| mt.fragment_error(f));
-        let error_range = errors.fold(None, |r: Option<(f64, f64)>, e| {
-            Some(r.map_or((e, e), |(lo, hi)| (lo.min(e), hi.max(e))))
-        });
         let validation = mt.validate();
-        let problems = validation
-            .violations
-            .iter()
-            .map(|v| {
-                format!(
-                    "{} × {:?} (first: {})",
-                    v.count,
-                    v.kind,
-                    v.examples.join("; ")
-                )
-            })
-            .collect();
         ModelInfo {
             summary: mt.summary(),
-            finest_tets,
-            error_range: error_range.unwrap_or((0.0, 0.0)),
-            problems,
+            problems: validation
+                .violations
+                .iter()
+                .map(|v| v.to_string())
+                .collect(),
         }
     }
 
@@ -191,8 +164,6 @@ impl ModelInfo {
         if let Some(o) = j.as_object_mut() {
             o.insert("kind".into(), json!("mt"));
             o.insert("file_version".into(), json!(MT_FILE_VERSION));
-            o.insert("finest_tets".into(), json!(self.finest_tets));
-            o.insert("min_error".into(), json!(self.error_range.0));
             o.insert("valid".into(), json!(self.problems.is_empty()));
             o.insert("problems".into(), json!(self.problems));
         }
@@ -215,13 +186,13 @@ impl ModelInfo {
         );
         println!(
             "finest     {} tets; coarsest {} tets ({:.1}%)",
-            self.finest_tets,
+            s.finest_tets,
             s.coarsest_tets,
-            100.0 * s.coarsest_tets as f64 / self.finest_tets.max(1) as f64
+            100.0 * s.coarsest_tets as f64 / s.finest_tets.max(1) as f64
         );
         println!(
             "error      {} metric, collapse errors {:e} .. {:e}",
-            i.error_metric, self.error_range.0, self.error_range.1
+            i.error_metric, s.min_error, s.max_error
         );
         println!(
             "build      boundary tolerance {} of the diagonal, features {} (angle {}°)",
