@@ -185,17 +185,7 @@ pub fn run(args: Args) -> CliResult {
             .iter()
             .zip(&polys)
             .enumerate()
-            .map(|(i, (s, p))| {
-                let mut j = s.to_json();
-                if let Some(o) = j.as_object_mut() {
-                    o.insert("polygon".into(), json!(i));
-                    o.insert(
-                        "points".into(),
-                        json!(p.points().iter().map(|q| q.to_array()).collect::<Vec<_>>()),
-                    );
-                }
-                j
-            })
+            .map(|(i, (s, p))| cut_json(s.to_json(), i, p))
             .collect();
         let j = json!({
             "input": args.mesh.display().to_string(),
@@ -271,4 +261,14 @@ pub fn run(args: Args) -> CliResult {
         "time       cut {cut_seconds:.4} s (read {read_seconds:.3} s, prepare {prepare_seconds:.3} s, write {write_seconds:.3} s)"
     );
     Ok(())
+}
+
+/// One polygon's statistics in `--json`, with the polygon's index and corners.
+pub fn cut_json(mut stats: Value, index: usize, polygon: &CutPolygon) -> Value {
+    if let Some(o) = stats.as_object_mut() {
+        o.insert("polygon".into(), json!(index));
+        let points: Vec<[f64; 3]> = polygon.points().iter().map(|q| q.to_array()).collect();
+        o.insert("points".into(), json!(points));
+    }
+    stats
 }

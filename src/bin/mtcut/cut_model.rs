@@ -9,7 +9,7 @@
 //! failing polygon is named with the first violation, and nothing is written.
 
 use crate::CliResult;
-use crate::cut::{Args, SchemeName, polygon_name, polygons};
+use crate::cut::{Args, SchemeName, cut_json, polygon_name, polygons};
 use crate::parse;
 use mtcut::cut::{MtCutStats, MtCutter};
 use mtcut::mt::{Mt, MtValidationReport};
@@ -98,17 +98,7 @@ pub fn run(args: Args) -> CliResult {
             .iter()
             .zip(&polys)
             .enumerate()
-            .map(|(i, (s, p))| {
-                let mut j = s.to_json();
-                if let Some(o) = j.as_object_mut() {
-                    o.insert("polygon".into(), json!(i));
-                    o.insert(
-                        "points".into(),
-                        json!(p.points().iter().map(|q| q.to_array()).collect::<Vec<_>>()),
-                    );
-                }
-                j
-            })
+            .map(|(i, (s, p))| cut_json(s.to_json(), i, p))
             .collect();
         let j = json!({
             "input": args.mesh.display().to_string(),
