@@ -13,6 +13,7 @@ use mtcut::cut::{
 };
 use mtcut::geom::{CutPolygon, DVec3, PolygonError, Tolerance, scalpel_sweep};
 use mtcut::mesh::{Attribute, TetMesh, ViolationKind};
+use mtcut::mt::POINT_VERTEX;
 
 fn assert_valid(m: &TetMesh, what: &str) {
     let r = m.validate();
@@ -168,10 +169,15 @@ fn attributes_follow_the_cut() {
     let values: Vec<f64> = m.positions().iter().map(|&p| f(p)).collect();
     m.point_data
         .insert(Attribute::new("f", 1, values).expect("column"));
+    // An extraction's MT vertex ids are names, not quantities: not interpolated.
+    let vertex_ids: Vec<f64> = (0..m.nb_vertices()).map(|v| v as f64).collect();
+    m.point_data
+        .insert(Attribute::new(POINT_VERTEX, 1, vertex_ids).expect("column"));
     let ids: Vec<f64> = (0..m.nb_tets()).map(|t| t as f64).collect();
     m.cell_data
         .insert(Attribute::new("id", 1, ids).expect("column"));
     let before = m.nb_tets();
+    let before_vertices = m.nb_vertices();
     let mut rng = Rng(99);
     let polygon = random_polygon(mesh("pinion"), Kind::Partial, &mut rng);
     let r = cut_mesh(&mut m, &polygon, &CutOptions::DEFAULT).expect("cut");
@@ -210,6 +216,20 @@ fn attributes_follow_the_cut() {
             VertexOrigin::Copy { of } => m.positions()[of.idx()],
         };
         assert!((p - m.positions()[v]).length() < 1e-12, "vertex {v}");
+    }
+    let named = &m.point_data.get(POINT_VERTEX).expect("ids").values;
+    assert!(
+        named[..before_vertices]
+            .iter()
+            .enumerate()
+            .all(|(v, &id)| id == v as f64)
+    );
+    for (k, o) in r.origins.iter().enumerate() {
+        let id = named[r.first_new_vertex.idx() + k];
+        match *o {
+            VertexOrigin::Copy { of } => assert_eq!(id, of.0 as f64, "a copy keeps its id"),
+            _ => assert_eq!(id, -1.0, "a cut point names no MT vertex"),
+        }
     }
 }
 

@@ -568,8 +568,14 @@ fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrig
     push_origin_rows(&mut mesh.point_data, scales, origins);
 }
 
+/// Point columns that name a vertex rather than measure a quantity (an extraction's MT
+/// vertex ids): interpolating them would make ids that name nothing. A point a cut makes
+/// on an edge or a face gets -1 (no such vertex); a copy keeps its original's id.
+const ID_COLUMNS: [&str; 1] = [crate::mt::POINT_VERTEX];
+
 /// Appends the point-data rows and scales of the vertices of `origins` (interpolated from
-/// the vertices they are made of; the largest scale of those). Shared with the MT cut.
+/// the vertices they are made of; the largest scale of those; id columns as above). Shared
+/// with the MT cut.
 pub(crate) fn push_origin_rows(
     point_data: &mut Attributes,
     scales: &mut Vec<f64>,
@@ -595,6 +601,16 @@ pub(crate) fn push_origin_rows(
             }
         };
         scales.push(scale);
+    }
+    for name in ID_COLUMNS {
+        if let Some(ids) = point_data.get_mut(name).filter(|c| c.components == 1) {
+            let first = ids.len() - origins.len();
+            for (k, o) in origins.iter().enumerate() {
+                if !matches!(o, VertexOrigin::Copy { .. }) {
+                    ids.values[first + k] = -1.0;
+                }
+            }
+        }
     }
 }
 

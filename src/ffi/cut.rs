@@ -221,8 +221,10 @@ fn cut_with(
 /// components: `mtcut_mesh_component_count`). The polygon must have at least 3 distinct,
 /// finite corners, be planar (within 1e-6 of its diameter) and convex; otherwise
 /// `MTCUT_STATUS_INVALID_ARGUMENT` says which corner is wrong and the mesh is unchanged.
-/// Attribute rows of new vertices are interpolated; new tets inherit their parent's rows,
-/// and the tet column "mtcut:cut" numbers the cut that created each tet (0: none).
+/// Attribute rows of new vertices are interpolated (an extraction's vertex ids,
+/// "mt_vertex", are -1 at points the cut makes and copied at duplicated vertices); new
+/// tets inherit their parent's rows, and the tet column "mtcut:cut" numbers the cut that
+/// created each tet (0: none).
 /// `stats_or_null`, if given (with `struct_size` set), receives the statistics.
 ///
 /// # Safety
