@@ -13,7 +13,7 @@
 //! the same answer, whichever tet asks first. Until [`CutSession::allocate`] gives the new
 //! points their ids (in canonical order), splitting uses provisional ids that
 //! [`CutSession::resolve`] maps to the final ones; so the tets around a vertex can be
-//! classified again ([`CutSession::forget_vertex`]) before anything is committed.
+//! classified again ([`CutSession::forget_vertices`]) before anything is committed.
 
 use super::tables::{NEG, ON, POS, config_index, face_points, is_crossed};
 use crate::geom::{CutPolygon, DVec3, Sign, Tolerance};
@@ -75,7 +75,7 @@ pub(crate) struct FaceRec {
     pub ends: [SectionEnd; 2],
     pub w: [f64; 3],
     pub id: VertexId,
-    /// Dropped by [`CutSession::forget_vertex`]: never found, never allocated.
+    /// Dropped by [`CutSession::forget_vertices`]: never found, never allocated.
     pub dead: bool,
 }
 
@@ -478,12 +478,14 @@ impl<'a> CutSession<'a> {
         id
     }
 
-    /// Forgets the face points of faces containing `v`, whose state is about to change
-    /// (the cut leaves it unsnapped): the tets around `v` are then classified again, and
-    /// make new records. Only unallocated records may be forgotten.
-    pub fn forget_vertex(&mut self, v: VertexId) {
+    /// Forgets the face points of faces containing a vertex of `vertices` (sorted), whose
+    /// state is about to change (the cut leaves them unsnapped): the tets around them are
+    /// then classified again, and make new records. Only unallocated records may be
+    /// forgotten. One pass over the records, whatever the number of vertices.
+    pub fn forget_vertices(&mut self, vertices: &[VertexId]) {
+        debug_assert!(vertices.windows(2).all(|w| w[0] < w[1]));
         for f in &mut self.faces[self.faces_allocated..] {
-            if f.v.contains(&v) {
+            if f.v.iter().any(|v| vertices.binary_search(v).is_ok()) {
                 f.dead = true;
             }
         }

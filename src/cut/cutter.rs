@@ -264,20 +264,17 @@ impl Cutter {
                 break snapped;
             }
             let t = Instant::now();
-            let mut affected: Vec<usize> = Vec::new();
-            let pinched = std::mem::take(&mut copies.pinched);
-            for &u in &pinched {
-                let state = Self::unsnapped_state(&self.mesh, polygon, u, &tets);
-                session.forget_vertex(u);
-                for (k, tet) in tets.iter().enumerate() {
-                    if let Some(j) = tet.iter().position(|&x| x == u) {
-                        states[k][j] = state;
-                        affected.push(k);
-                    }
-                }
-            }
-            affected.sort_unstable();
-            affected.dedup();
+            let mut pinched = std::mem::take(&mut copies.pinched);
+            pinched.sort_unstable();
+            pinched.dedup();
+            let affected = unsnap(
+                &mut session,
+                positions,
+                polygon,
+                &pinched,
+                &tets,
+                &mut states,
+            );
             unsnapped.extend_from_slice(&pinched);
             let sub_tets: Vec<Tet> = affected.iter().map(|&k| tets[k]).collect();
             let sub_states: Vec<[u8; 4]> = affected.iter().map(|&k| states[k]).collect();
@@ -510,29 +507,6 @@ impl Cutter {
         (star, snapped)
     }
 
-    /// The state of a snapped vertex left unsnapped: its exact side; for a vertex exactly
-    /// on the plane, the side of its neighbours off the plane when they are all on one
-    /// side (then no edge from it crosses the plane at it, which would make a cut point
-    /// coincide with it), positive otherwise.
-    fn unsnapped_state(mesh: &TetMesh, polygon: &CutPolygon, v: VertexId, tets: &[Tet]) -> u8 {
-        match polygon.side(mesh.position(v)) {
-            Sign::Negative => return NEG,
-            Sign::Positive => return POS,
-            Sign::Zero => {}
-        }
-        let (mut pos, mut neg) = (false, false);
-        for t in tets.iter().filter(|t| t.contains(&v)) {
-            for &x in t {
-                match polygon.side(mesh.position(x)) {
-                    Sign::Positive => pos = true,
-                    Sign::Negative => neg = true,
-                    Sign::Zero => {}
-                }
-            }
-        }
-        if neg && !pos { NEG } else { POS }
-    }
-
     /// The side of a tet the tables leave whole but that touches the cut at a vertex: the
     /// side of its other vertices; a tet with all four vertices snapped (a sliver lying in
     /// the cut) goes to the side of its centroid.
@@ -572,6 +546,71 @@ fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrig
 /// vertex ids): interpolating them would make ids that name nothing. A point a cut makes
 /// on an edge or a face gets -1 (no such vertex); a copy keeps its original's id.
 const ID_COLUMNS: [&str; 1] = [crate::mt::POINT_VERTEX];
+
+/// Leaves `vertices` (sorted, distinct), snapped so far, unsnapped: each takes the state
+/// [`unsnapped_state`] gives it in every candidate of `tets` using it (in `states`), and
+/// the session forgets the records made with it. Returns the candidates touched (sorted,
+/// distinct), to be classified again. Shared with the MT cut.
+pub(crate) fn unsnap(
+    session: &mut CutSession<'_>,
+    positions: &[DVec3],
+    polygon: &CutPolygon,
+    vertices: &[VertexId],
+    tets: &[Tet],
+    states: &mut [[u8; 4]],
+) -> Vec<usize> {
+    debug_assert!(vertices.windows(2).all(|w| w[0] < w[1]));
+    // (vertex index, candidate, corner), grouped by vertex: one pass over the candidates.
+    let mut uses: Vec<(usize, usize, usize)> = Vec::new();
+    for (k, tet) in tets.iter().enumerate() {
+        for (j, v) in tet.iter().enumerate() {
+            if let Ok(i) = vertices.binary_search(v) {
+                uses.push((i, k, j));
+            }
+        }
+    }
+    uses.sort_unstable();
+    for group in uses.chunk_by(|a, b| a.0 == b.0) {
+        let v = vertices[group[0].0];
+        let around = group.iter().map(|&(_, k, _)| &tets[k]);
+        let state = unsnapped_state(positions, polygon, v, around);
+        for &(_, k, j) in group {
+            states[k][j] = state;
+        }
+    }
+    session.forget_vertices(vertices);
+    let mut affected: Vec<usize> = uses.iter().map(|&(_, k, _)| k).collect();
+    affected.sort_unstable();
+    affected.dedup();
+    affected
+}
+
+/// The state of a snapped vertex left unsnapped: its exact side; for a vertex exactly on
+/// the plane, the side of its neighbours (in the tets `around` it) off the plane when they
+/// are all on one side (then no edge from it crosses the plane at it, which would make a
+/// cut point coincide with it), positive otherwise.
+fn unsnapped_state<'t>(
+    positions: &[DVec3],
+    polygon: &CutPolygon,
+    v: VertexId,
+    around: impl Iterator<Item = &'t Tet>,
+) -> u8 {
+    match polygon.side(positions[v.idx()]) {
+        Sign::Negative => return NEG,
+        Sign::Positive => return POS,
+        Sign::Zero => {}
+    }
+    let (mut pos, mut neg) = (false, false);
+    // Ghost corners of an MT's closing tets have no position.
+    for x in around.flatten().filter_map(|x| positions.get(x.idx())) {
+        match polygon.side(*x) {
+            Sign::Positive => pos = true,
+            Sign::Negative => neg = true,
+            Sign::Zero => {}
+        }
+    }
+    if neg && !pos { NEG } else { POS }
+}
 
 /// Appends the point-data rows and scales of the vertices of `origins` (interpolated from
 /// the vertices they are made of; the largest scale of those; id columns as above). Shared

@@ -66,7 +66,7 @@
 //! The same vertex is used by tets of several levels, so its duplication must be decided
 //! once, for all of them. The engine gives what that needs: [`CutSession`] (classification
 //! cached per vertex, edge and face across batches; provisional ids until
-//! [`CutSession::allocate`]; [`CutSession::forget_vertex`] to unsnap), a vertex's state
+//! [`CutSession::allocate`]; [`CutSession::forget_vertices`] to unsnap), a vertex's state
 //! from positions alone ([`classify::StateClassifier`]), children with their side and their
 //! snapped vertices ([`split::Children`]), and every new vertex's linear combination
 //! ([`VertexOrigin`]: edge point `(a, b, t)`, face point `(a, b, c, w)`, copy of `v`), which

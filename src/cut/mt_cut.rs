@@ -81,12 +81,12 @@
 
 use super::classify::{CutScratch, CutSession, NONE, StateClassifier, TetClass, is_candidate};
 use super::classify::{VertexOrigin, origin_position};
-use super::cutter::push_origin_rows;
+use super::cutter::{push_origin_rows, unsnap};
 use super::options::{CutError, CutOptions};
 use super::split::{Children, split_tet};
 use super::tables::{NEG, ON, POS, Side};
 use super::unglue::{StarEntry, plan_copies};
-use crate::geom::{Aabb, CutPolygon, DVec3, Sign};
+use crate::geom::{Aabb, CutPolygon, DVec3};
 use crate::mesh::tables::{TET_EDGES, TET_FACES};
 use crate::mesh::{FragmentId, Tet, TetId, VertexId};
 use crate::mt::{FragmentKind, GHOST, Mt, OpenMt};
@@ -473,19 +473,7 @@ impl MtCutter {
                 break;
             }
             stats.vertices_unsnapped += bad.len();
-            let mut affected: Vec<usize> = Vec::new();
-            for &u in &bad {
-                let state = unsnapped_state(positions, polygon, u, &tets);
-                session.forget_vertex(u);
-                for (k, tet) in tets.iter().enumerate() {
-                    if let Some(j) = tet.iter().position(|&x| x == u) {
-                        states[k][j] = state;
-                        affected.push(k);
-                    }
-                }
-            }
-            affected.sort_unstable();
-            affected.dedup();
+            let affected = unsnap(&mut session, positions, polygon, &bad, &tets, &mut states);
             let sub_tets: Vec<Tet> = affected.iter().map(|&k| tets[k]).collect();
             let sub_states: Vec<[u8; 4]> = affected.iter().map(|&k| states[k]).collect();
             let sub = session.classify(positions, &self.scales, &sub_tets, &sub_states, false);
@@ -917,28 +905,6 @@ fn side_of_states(tet: &Tet, states: [u8; 4], positions: &[DVec3], polygon: &Cut
             }
         }
     }
-}
-
-/// The state of a snapped vertex left unsnapped: its exact side; for a vertex exactly on
-/// the plane, the side of its neighbours off the plane when they are all on one side,
-/// positive otherwise (the plain-mesh engine's rule).
-fn unsnapped_state(positions: &[DVec3], polygon: &CutPolygon, v: VertexId, tets: &[Tet]) -> u8 {
-    match polygon.side(positions[v.idx()]) {
-        Sign::Negative => return NEG,
-        Sign::Positive => return POS,
-        Sign::Zero => {}
-    }
-    let (mut pos, mut neg) = (false, false);
-    for t in tets.iter().filter(|t| t.contains(&v)) {
-        for &x in t {
-            match polygon.side(positions[x.idx()]) {
-                Sign::Positive => pos = true,
-                Sign::Negative => neg = true,
-                Sign::Zero => {}
-            }
-        }
-    }
-    if neg && !pos { NEG } else { POS }
 }
 
 /// The connected parts of a fragment: its floor and ceiling tets (ghosts included) joined
