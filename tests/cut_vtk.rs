@@ -10,6 +10,7 @@
 //! Needs VTK's Python (`/usr/bin/python3 -c "import vtk"`): without it the test fails when
 //! the environment variable CI is set and is skipped (with a message) otherwise.
 
+mod common;
 mod cut_common;
 
 use cut_common::*;
@@ -17,25 +18,6 @@ use mtcut::cut::{CutOptions, Cutter};
 use mtcut::geom::{DVec3, Tolerance, triangle_area};
 use mtcut::mesh::TetMesh;
 use mtcut::mesh::tables::TET_FACES;
-use std::process::Command;
-
-const PYTHON: &str = "/usr/bin/python3";
-
-fn vtk_available() -> bool {
-    let ok = Command::new(PYTHON)
-        .args(["-c", "import vtk"])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    if !ok {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "VTK Python not found ({PYTHON} -c 'import vtk' failed) and CI is set"
-        );
-        eprintln!("skipped: VTK Python not found");
-    }
-    ok
-}
 
 fn boundary_area(m: &TetMesh) -> f64 {
     m.adjacency()
@@ -55,18 +37,13 @@ fn vtk_section_areas(name: &str, planes: &[(DVec3, DVec3)]) -> Vec<f64> {
         .iter()
         .map(|(o, n)| [o.x, o.y, o.z, n.x, n.y, n.z])
         .collect();
-    let out = Command::new(PYTHON)
-        .arg(root.join("scripts/vtk/cut_section_area.py"))
-        .arg(root.join("tests/data").join(name))
-        .arg(serde_json::to_string(&list).expect("json"))
-        .output()
-        .expect("run the VTK script");
-    assert!(
-        out.status.success(),
-        "VTK script failed: {}",
-        String::from_utf8_lossy(&out.stderr)
+    let data = root.join("tests/data").join(name);
+    let list = serde_json::to_string(&list).expect("json");
+    let out = common::vtk_script(
+        "cut_section_area.py",
+        &[data.to_str().expect("utf-8 path"), &list],
     );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON from the script");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("JSON from the script");
     v["areas"]
         .as_array()
         .expect("areas")
@@ -77,7 +54,7 @@ fn vtk_section_areas(name: &str, planes: &[(DVec3, DVec3)]) -> Vec<f64> {
 
 #[test]
 fn boundary_grows_by_twice_the_section_vtk_computes() {
-    if !vtk_available() {
+    if !common::vtk_python() {
         return;
     }
     for (k, name) in MESHES.iter().enumerate() {

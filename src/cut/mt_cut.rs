@@ -87,7 +87,7 @@ use super::split::{Children, split_tet};
 use super::tables::{NEG, ON, POS, Side};
 use super::unglue::{StarEntry, plan_copies};
 use crate::geom::{Aabb, CutPolygon, DVec3};
-use crate::mesh::tables::{TET_EDGES, TET_FACES};
+use crate::mesh::tables::{TET_EDGES, TET_FACES, flip_face, oriented_face};
 use crate::mesh::{FragmentId, Tet, TetId, VertexId};
 use crate::mt::{FragmentKind, GHOST, Mt, OpenMt};
 use std::collections::{HashMap, HashSet};
@@ -199,23 +199,9 @@ pub const MAX_MT_SNAP: f64 = 1e-4;
 /// A face as an oriented triangle, rotated so its smallest id comes first.
 type FaceKey = [u32; 3];
 
-fn oriented(a: u32, b: u32, c: u32) -> FaceKey {
-    if a < b && a < c {
-        [a, b, c]
-    } else if b < c {
-        [b, c, a]
-    } else {
-        [c, a, b]
-    }
-}
-
-fn flip(f: FaceKey) -> FaceKey {
-    oriented(f[0], f[2], f[1])
-}
-
 /// The outward faces of a tet, oriented.
 fn faces_of(t: &Tet) -> [FaceKey; 4] {
-    TET_FACES.map(|f| oriented(t[f[0]].0, t[f[1]].0, t[f[2]].0))
+    TET_FACES.map(|f| oriented_face(t[f[0]].0, t[f[1]].0, t[f[2]].0))
 }
 
 fn find(parent: &mut [u32], mut i: u32) -> u32 {
@@ -595,7 +581,7 @@ impl MtCutter {
             let ch = &children[i as usize];
             for lf in TET_FACES {
                 let face = lf.map(|j| tets[k][j]);
-                let key = oriented(face[0].0, face[1].0, face[2].0);
+                let key = oriented_face(face[0].0, face[1].0, face[2].0);
                 if sub_faces.contains_key(&key) {
                     continue;
                 }
@@ -701,7 +687,7 @@ impl MtCutter {
             if tet[3] != GHOST {
                 continue;
             }
-            let key = oriented(tet[0].0, tet[1].0, tet[2].0);
+            let key = oriented_face(tet[0].0, tet[1].0, tet[2].0);
             if let Some(subs) = sub_faces.get(&key) {
                 stats.ghosts_split += 1;
                 let (c, d) = (open.creator[g], open.destroyer[g]);
@@ -739,7 +725,7 @@ impl MtCutter {
             let t = open.tets[g as usize];
             if t[..3].iter().all(|&v| is_cut_vertex(v)) {
                 present
-                    .entry(flip(oriented(t[0].0, t[1].0, t[2].0)))
+                    .entry(flip_face(oriented_face(t[0].0, t[1].0, t[2].0)))
                     .or_default()
                     .push(g);
             }
@@ -753,7 +739,7 @@ impl MtCutter {
             let tet = open.tets[t as usize];
             for (lf, f) in TET_FACES.iter().zip(faces_of(&tet)) {
                 let matched = present
-                    .get(&flip(f))
+                    .get(&flip_face(f))
                     .is_some_and(|l| l.iter().any(|&o| coexist(t as usize, o as usize)));
                 if all_cut(&tet, lf) && !matched {
                     let g = [tet[lf[0]], tet[lf[1]], tet[lf[2]], GHOST];

@@ -31,6 +31,24 @@ pub const fn opposite_edge(e: usize) -> usize {
     5 - e
 }
 
+/// An oriented triangle as a key: rotated so its smallest vertex comes first, so two
+/// rotations of the same oriented triangle compare equal and the opposite orientation
+/// does not ([`flip_face`] gives that one).
+pub const fn oriented_face(a: u32, b: u32, c: u32) -> [u32; 3] {
+    if a < b && a < c {
+        [a, b, c]
+    } else if b < c {
+        [b, c, a]
+    } else {
+        [c, a, b]
+    }
+}
+
+/// The key of the same triangle with the opposite orientation.
+pub const fn flip_face(f: [u32; 3]) -> [u32; 3] {
+    oriented_face(f[0], f[2], f[1])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -17,7 +17,7 @@
 use super::extract::ExtractOptions;
 use super::{FragmentKind, GHOST, Mt};
 use crate::geom::{Aabb, Sign, orient3d};
-use crate::mesh::tables::TET_FACES;
+use crate::mesh::tables::{TET_FACES, flip_face, oriented_face};
 use crate::mesh::{FragmentId, Tet, TetId};
 use std::fmt;
 
@@ -111,29 +111,13 @@ impl fmt::Display for MtViolation {
     }
 }
 
-/// An oriented triangle, rotated so its smallest vertex comes first (two rotations of the
-/// same oriented triangle compare equal; the opposite orientation does not).
-fn oriented(a: u32, b: u32, c: u32) -> [u32; 3] {
-    if a < b && a < c {
-        [a, b, c]
-    } else if b < c {
-        [b, c, a]
-    } else {
-        [c, a, b]
-    }
-}
-
-fn flip(f: [u32; 3]) -> [u32; 3] {
-    oriented(f[0], f[2], f[1])
-}
-
 /// The outward faces of `tets` that are not matched by an opposite face of another of
 /// them (the boundary), sorted; and the number of faces met twice with one orientation.
 fn boundary_of(tets: impl Iterator<Item = Tet>, buf: &mut Vec<[u32; 3]>) -> (Vec<[u32; 3]>, usize) {
     buf.clear();
     for t in tets {
         for f in TET_FACES {
-            buf.push(oriented(t[f[0]].0, t[f[1]].0, t[f[2]].0));
+            buf.push(oriented_face(t[f[0]].0, t[f[1]].0, t[f[2]].0));
         }
     }
     buf.sort_unstable();
@@ -145,7 +129,7 @@ fn boundary_of(tets: impl Iterator<Item = Tet>, buf: &mut Vec<[u32; 3]>) -> (Vec
     }
     let mut out = Vec::new();
     for &f in buf.iter() {
-        if buf.binary_search(&flip(f)).is_err() {
+        if buf.binary_search(&flip_face(f)).is_err() {
             out.push(f);
         }
     }
