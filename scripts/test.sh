@@ -55,4 +55,9 @@ cargo test --locked
 step "C API: install, examples, consumers, valgrind (scripts/test-c-api.sh)"
 scripts/test-c-api.sh
 
+# Sequences of 50 MT cuts per shared mesh, the model validated after every cut: minutes in
+# the dev profile, so run once in release (the library is already built there).
+step "MT cut: sequences of 50 cuts on each shared mesh (release)"
+cargo test --locked --release --test mtcut_cut -- --ignored sequence_of_50_cuts
+
 step "all checks passed"

@@ -5,6 +5,7 @@
 //! errors of bad polygons and options. Every cut is followed by `validate()`.
 
 mod cut_common;
+mod mtcut_common;
 
 use cut_common::*;
 use mtcut::cut::{
@@ -108,9 +109,11 @@ fn sequences_of_cuts_crossing_earlier_cuts() {
         let options = CutOptions::DEFAULT;
         let mut cutter = Cutter::new(input.clone(), options).expect("options");
         let mut rng = Rng(77 + k as u64);
+        let mut polygons: Vec<CutPolygon> = Vec::new();
         for step in 0..25 {
             let kind = [Kind::Through, Kind::Partial, Kind::Tiny, Kind::Partial][step % 4];
             let polygon = random_polygon(input, kind, &mut rng);
+            polygons.push(polygon.clone());
             let before = cutter.mesh().clone();
             let scales = cutter.vertex_scales().to_vec();
             let res = cutter.cut(&polygon).expect("cut");
@@ -124,6 +127,16 @@ fn sequences_of_cuts_crossing_earlier_cuts() {
                 false,
             )
             .unwrap_or_else(|e| panic!("{name}, cut {step} ({kind:?}): {e}"));
+            // No earlier polygon crossed either (up to the crack tips' band, see
+            // `mtcut_common::crossing`).
+            let (mesh, scales) = (cutter.mesh(), cutter.vertex_scales());
+            let near = |u: usize, p: &CutPolygon| {
+                p.signed_distance(mesh.positions()[u]).abs()
+                    <= options.snap.distance(scales[u]) * 1.0001
+            };
+            if let Some(m) = mtcut_common::crossing(mesh, &polygons, near, |u| scales[u]) {
+                panic!("{name}, after cut {step} ({kind:?}): {m}");
+            }
             let v = cutter.mesh().volume();
             assert!((v - volume).abs() <= 1e-12 * volume, "{name}, cut {step}");
         }

@@ -47,15 +47,29 @@
 //!    side. The crack surface is new boundary: every face of a new tet that no tet or
 //!    ghost of the pool matches gets a ghost with the tet's creator and destroyer, so each
 //!    fragment's floor and ceiling, ghosts included, keep the same boundary.
-//! 3. **The DAG.** Each new tet inherits its parent's creator and destroyer. Then each
-//!    fragment involved is split by the connected components of its floor and ceiling
-//!    (tets, ghosts included, joined through shared vertices): a fragment with `k` components
-//!    becomes `k` fragments (the first keeps its id, the others are appended with its kind
-//!    and error), each creating and destroying the tets of its part. The paper's
-//!    `UpdateIncomingArcs` / `UpdateOutgoingArcs` are this relabelling seen from the arcs:
-//!    arcs are re-derived from the tets' creators and destroyers when the MT is closed.
-//!    Processing a fragment reads only its own tets and writes only their links to it, so
-//!    any order gives the same MT ([`MtCutter::cut_in_order`] lets tests check this).
+//! 3. **The DAG.** Each new tet inherits its parent's creator and destroyer. Then the
+//!    floor and ceiling of each fragment involved (tets, ghosts included) are split into
+//!    local parts, joined through shared vertices (and a part found on one level only —
+//!    a piece cut free inside the fragment — joined with the parts of the other level
+//!    occupying the same space). Parts are then grouped by *body*: the parts and the
+//!    untouched fragments joined through the tets between them (the arcs). A fragment
+//!    whose parts lie in `k` bodies becomes `k` fragments (the first keeps its id, the
+//!    others are appended with its kind and error), each creating and destroying the tets
+//!    of its parts. The paper's `UpdateIncomingArcs` / `UpdateOutgoingArcs` are this
+//!    relabelling seen from the arcs: arcs are re-derived from the tets' creators and
+//!    destroyers when the MT is closed. Processing a fragment reads only its own tets and
+//!    writes only their links to it, so any order gives the same MT
+//!    ([`MtCutter::cut_in_order`] lets tests check this).
+//!
+//!    Why by body and not by local part (the paper splits a fragment wherever C separates
+//!    it): a crack ending inside the body separates the regions of the fragments it
+//!    crosses locally, yet both lips belong to one body. Split there, the two lips would
+//!    be separate fragments, refined independently by a focus extraction, and the lips
+//!    would meet at different resolutions (the vertices of the finer lip lying inside the
+//!    faces of the coarser one). Kept whole, every extraction refines both lips together
+//!    and they match, as after a cut of a plain mesh. Where a cut separates the body, the
+//!    parts are in different bodies and become independent MTs, as the paper's split
+//!    does.
 //!
 //! # Limits
 //!
@@ -113,7 +127,8 @@ pub struct MtCutTimes {
 pub struct MtCutStats {
     /// Fragments whose floor or ceiling holds a tet the cut changed.
     pub fragments_involved: usize,
-    /// Of those, the fragments the cut separated (each became two or more).
+    /// Of those, the fragments the cut split (their parts lie in different bodies; each
+    /// became two or more).
     pub fragments_split: usize,
     /// Fragments appended by the splits.
     pub fragments_added: usize,
@@ -777,44 +792,94 @@ impl MtCutter {
         for (i, f) in order.iter().enumerate() {
             slot[f.idx()] = i as u32;
         }
-        // Floor and ceiling of each involved fragment, in pool order.
+        // Floor and ceiling of each involved fragment, in pool order. Tets of fragments
+        // not involved join their creator and destroyer in `body` right away: bodies are
+        // the fragments, and the parts below, joined through the tets between them (the
+        // arcs).
+        let mut body: Vec<u32> = (0..nf as u32).collect();
         let mut floor: Vec<Vec<u32>> = vec![Vec::new(); order.len()];
         let mut ceiling: Vec<Vec<u32>> = vec![Vec::new(); order.len()];
         for t in 0..open.tets.len() {
-            let (c, d) = (slot[open.creator[t].idx()], slot[open.destroyer[t].idx()]);
+            let (cf, df) = (open.creator[t], open.destroyer[t]);
+            let (c, d) = (slot[cf.idx()], slot[df.idx()]);
             if c != u32::MAX {
                 ceiling[c as usize].push(t as u32);
             }
             if d != u32::MAX {
                 floor[d as usize].push(t as u32);
             }
+            if c == u32::MAX && d == u32::MAX {
+                union(&mut body, cf.0, df.0);
+            }
+        }
+        // The local parts of each involved fragment, each with a provisional id after the
+        // fragments': `first_part[i] + p` for part `p` of fragment `order[i]`.
+        let mut parts: Vec<Vec<u32>> = Vec::with_capacity(order.len());
+        let mut first_part: Vec<u32> = Vec::with_capacity(order.len() + 1);
+        let mut next = nf as u32;
+        for i in 0..order.len() {
+            let p = split_fragment(&open.tets, &open.positions, &floor[i], &ceiling[i]);
+            first_part.push(next);
+            next += p.iter().map(|&x| x + 1).max().unwrap_or(1);
+            parts.push(p);
+        }
+        first_part.push(next);
+        // Parts of one fragment that stay in one body are not separated (see the module
+        // docs): only parts in different bodies become different fragments.
+        body.extend(nf as u32..next);
+        let mut part_of: HashMap<u32, [u32; 2]> = HashMap::new();
+        for i in 0..order.len() {
+            let nfl = floor[i].len();
+            for (j, &t) in floor[i].iter().chain(&ceiling[i]).enumerate() {
+                let e = part_of
+                    .entry(t)
+                    .or_insert([open.creator[t as usize].0, open.destroyer[t as usize].0]);
+                e[(j < nfl) as usize] = first_part[i] + parts[i][j];
+            }
+        }
+        for &[c, d] in part_of.values() {
+            union(&mut body, c, d);
         }
         for (i, &f) in order.iter().enumerate() {
-            let parts = split_fragment(&open.tets, &floor[i], &ceiling[i]);
-            let n_parts = parts.iter().map(|&p| p + 1).max().unwrap_or(1);
+            let n_parts = first_part[i + 1] - first_part[i];
             if n_parts < 2 {
+                continue;
+            }
+            // Group the parts by body, numbered by first appearance.
+            let mut group: Vec<u32> = Vec::with_capacity(n_parts as usize);
+            let mut roots: Vec<u32> = Vec::new();
+            for p in 0..n_parts {
+                let r = find(&mut body, first_part[i] + p);
+                let g = match roots.iter().position(|&x| x == r) {
+                    Some(g) => g,
+                    None => {
+                        roots.push(r);
+                        roots.len() - 1
+                    }
+                };
+                group.push(g as u32);
+            }
+            let n_groups = roots.len() as u32;
+            if n_groups < 2 {
                 continue;
             }
             stats.fragments_split += 1;
             let first_new_fragment = open.kind.len() as u32;
-            for _ in 1..n_parts {
+            for _ in 1..n_groups {
                 open.kind.push(open.kind[f.idx()]);
                 open.error.push(open.error[f.idx()]);
             }
-            stats.fragments_added += (n_parts - 1) as usize;
-            let id = |p: u32| {
-                if p == 0 {
-                    f
-                } else {
-                    FragmentId(first_new_fragment + p - 1)
-                }
+            stats.fragments_added += (n_groups - 1) as usize;
+            let id = |p: u32| match group[p as usize] {
+                0 => f,
+                g => FragmentId(first_new_fragment + g - 1),
             };
             let nfl = floor[i].len();
             for (j, &t) in floor[i].iter().enumerate() {
-                open.destroyer[t as usize] = id(parts[j]);
+                open.destroyer[t as usize] = id(parts[i][j]);
             }
             for (j, &t) in ceiling[i].iter().enumerate() {
-                open.creator[t as usize] = id(parts[nfl + j]);
+                open.creator[t as usize] = id(parts[i][nfl + j]);
             }
         }
         let mt = open
@@ -898,19 +963,109 @@ fn side_of_states(tet: &Tet, states: [u8; 4], positions: &[DVec3], polygon: &Cut
 /// sets (every vertex on the crack is duplicated), so sharing a vertex means not
 /// separated; joining floor to ceiling by vertices (rather than by boundary faces) also
 /// pairs a piece the cut isolated inside the fragment's floor, closed by its ghosts and
-/// sharing no face with the ceiling, with the piece replacing it in the ceiling. Returns
-/// the part of each floor tet then each ceiling tet, numbered by first appearance.
-fn split_fragment(tets: &[Tet], floor: &[u32], ceiling: &[u32]) -> Vec<u32> {
+/// sharing no face with the ceiling, with the piece replacing it in the ceiling, as long as
+/// the two share a vertex of the fragment's boundary.
+///
+/// A piece cut free inside the fragment's region (several cuts can carve a chunk off the
+/// body there) touches no other fragment: its floor and ceiling share no vertex (their
+/// crack points lie on different edges), and would become a fragment destroying tets and
+/// creating none plus one creating tets and destroying none. Such a part, with a floor and
+/// no ceiling or the reverse, is joined with the parts of the other level that occupy the
+/// same space: those holding the centroid of one of its tets, or a tet of which holds the
+/// centroid of one of its own (exact point-in-tet tests).
+///
+/// Returns the part of each floor tet then each ceiling tet, numbered by first appearance.
+fn split_fragment(tets: &[Tet], positions: &[DVec3], floor: &[u32], ceiling: &[u32]) -> Vec<u32> {
     let n = floor.len() + ceiling.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
     let mut first: HashMap<VertexId, u32> = HashMap::new();
-    for (i, &t) in floor.iter().chain(ceiling).enumerate() {
+    let all: Vec<u32> = floor.iter().chain(ceiling).copied().collect();
+    for (i, &t) in all.iter().enumerate() {
         for &v in tets[t as usize].iter().filter(|v| **v != GHOST) {
             match first.get(&v) {
                 Some(&o) => union(&mut parent, i as u32, o),
                 None => {
                     first.insert(v, i as u32);
                 }
+            }
+        }
+    }
+    // Parts present on one level only.
+    let nfl = floor.len() as u32;
+    let mut levels = vec![[false; 2]; n];
+    for i in 0..n as u32 {
+        let r = find(&mut parent, i) as usize;
+        levels[r][(i >= nfl) as usize] = true;
+    }
+    // (A root has no floor and a drain no ceiling: nothing to pair there.)
+    let both = !floor.is_empty() && !ceiling.is_empty();
+    let orphans: Vec<u32> = (0..n as u32)
+        .filter(|&i| {
+            if !both {
+                return false;
+            }
+            let l = levels[find(&mut parent, i) as usize];
+            !(l[0] && l[1]) && tets[all[i as usize] as usize][3] != GHOST
+        })
+        .collect();
+    if !orphans.is_empty() {
+        let corners = |i: u32| tets[all[i as usize] as usize].map(|v| positions[v.idx()]);
+        let real = |i: u32| tets[all[i as usize] as usize][3] != GHOST;
+        // Centroid and box of every real tet (ghosts have neither).
+        let shape: Vec<(DVec3, Aabb)> = (0..n as u32)
+            .map(|i| {
+                if !real(i) {
+                    return (DVec3::ZERO, Aabb::EMPTY);
+                }
+                let c = corners(i);
+                ((c[0] + c[1] + c[2] + c[3]) * 0.25, Aabb::from_points(&c))
+            })
+            .collect();
+        let holds = |i: u32, p: DVec3| {
+            if !shape[i as usize].1.contains(p) {
+                return false;
+            }
+            let c = corners(i);
+            (0..4).all(|j| {
+                let mut q = c;
+                q[j] = p;
+                crate::geom::orient3d(q[0], q[1], q[2], q[3]) != crate::geom::Sign::Negative
+            })
+        };
+        for &i in &orphans {
+            let others = if i < nfl { nfl..n as u32 } else { 0..nfl };
+            for j in others.filter(|&j| real(j)) {
+                if holds(j, shape[i as usize].0) || holds(i, shape[j as usize].0) {
+                    union(&mut parent, i, j);
+                }
+            }
+        }
+        // What is left exists on one level only: a sliver of the body between the
+        // boundaries of the floor and the ceiling (a collapse moves the boundary). Closed
+        // by its own ghosts, it leaves the boundary of any part unchanged: it joins the part
+        // of the nearest tet of the other level.
+        for i in 0..n as u32 {
+            levels[i as usize] = [false; 2];
+        }
+        for i in 0..n as u32 {
+            let r = find(&mut parent, i) as usize;
+            levels[r][(i >= nfl) as usize] = true;
+        }
+        for &i in &orphans {
+            let l = levels[find(&mut parent, i) as usize];
+            if l[0] && l[1] {
+                continue;
+            }
+            let centroid = shape[i as usize].0;
+            let others = if i < nfl { nfl..n as u32 } else { 0..nfl };
+            let nearest = others
+                .filter(|&j| real(j))
+                .map(|j| (centroid.distance_squared(shape[j as usize].0), j))
+                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            if let Some((_, j)) = nearest {
+                union(&mut parent, i, j);
+                let r = find(&mut parent, i) as usize;
+                levels[r] = [true; 2];
             }
         }
     }

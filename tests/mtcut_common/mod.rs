@@ -62,35 +62,52 @@ pub fn requests(mt: &Mt, thresholds: usize, regions: usize, rng: &mut Rng) -> Ve
 }
 
 /// An edge of `mesh` crossing one of `polygons` strictly inside it, away from vertices
-/// within snapping distance of the plane (`scale(v)` gives the distance for vertex `v` of
-/// the mesh).
+/// within snapping distance of the plane (`near(v, polygon)`).
+///
+/// The last polygon is held strictly. An earlier one may be crossed near its contour
+/// (within twice the larger `scale` of the edge's ends, the longest edge the input mesh had
+/// at those vertices): the tables end a crack at face points placed between C's contour and
+/// the section's inner end (`CutOptions::face_point_margin`, paper §4.1: the contour is
+/// followed up to a tet's size), so a band of C along its contour, inside the tip tets, is
+/// not cut, and a later cut subdividing a tip tet can make an edge crossing C there.
+/// Farther inside C the crack is exact, and any crossing fails.
 pub fn crossing(
     mesh: &TetMesh,
     polygons: &[CutPolygon],
     near: impl Fn(usize, &CutPolygon) -> bool,
+    scale: impl Fn(usize) -> f64,
 ) -> Option<String> {
     let pos = mesh.positions();
+    let last = polygons.len().saturating_sub(1);
     for (k, polygon) in polygons.iter().enumerate() {
         let side: Vec<Sign> = pos.iter().map(|p| polygon.side(*p)).collect();
         for (t, tet) in mesh.tets().iter().enumerate() {
             for [a, b] in TET_EDGES {
                 let (u, w) = (tet[a].idx(), tet[b].idx());
-                if side[u] != Sign::Zero
-                    && side[w] != Sign::Zero
-                    && side[u] != side[w]
-                    && polygon.segment_crosses_inside(pos[u], pos[w])
-                    && !near(u, polygon)
-                    && !near(w, polygon)
+                if side[u] == Sign::Zero
+                    || side[w] == Sign::Zero
+                    || side[u] == side[w]
+                    || !polygon.segment_crosses_inside(pos[u], pos[w])
+                    || near(u, polygon)
+                    || near(w, polygon)
                 {
-                    return Some(format!(
-                        "polygon {k}: edge {u}-{w} of tet {t} crosses it inside ({:?} - {:?}, \
-                         distances {:e} {:e})",
-                        pos[u],
-                        pos[w],
-                        polygon.signed_distance(pos[u]),
-                        polygon.signed_distance(pos[w])
-                    ));
+                    continue;
                 }
+                let (du, dw) = (
+                    polygon.signed_distance(pos[u]),
+                    polygon.signed_distance(pos[w]),
+                );
+                let x = pos[u] + (pos[w] - pos[u]) * (du / (du - dw));
+                // Distance of the crossing from C's contour (C is convex).
+                let band = polygon.inside_margin(x);
+                if k < last && band <= 2.0 * scale(u).max(scale(w)) {
+                    continue;
+                }
+                return Some(format!(
+                    "polygon {k}: edge {u}-{w} of tet {t} crosses it inside ({:?} - {:?}, \
+                     distances {du:e} {dw:e}, {band:e} inside C's contour)",
+                    pos[u], pos[w],
+                ));
             }
         }
     }
@@ -155,7 +172,8 @@ pub fn check_after_cut(
             p.signed_distance(e.mesh.positions()[u]).abs()
                 <= snap.distance(scales[id]).max(1e-9 * scales[id]) * 1.0001
         };
-        if let Some(m) = crossing(&e.mesh, polygons, near) {
+        let scale = |u: usize| scales[e.vertex_ids[u].idx()];
+        if let Some(m) = crossing(&e.mesh, polygons, near, scale) {
             return Err(format!("extraction {o:?}: {m}"));
         }
     }
