@@ -792,8 +792,42 @@ impl<'a> CutSession<'a> {
     }
 }
 
+/// The positions of new vertices from their origins (in id order), equal to the bit where
+/// they coincide: cut points on edges, and face points in faces, whose ends lie at the
+/// same positions (the two lips of an earlier crack, where both are cut again: an edge
+/// from a duplicated vertex to a crack tip, seen from each side) take the position of the
+/// first of them. Computed from differently ordered ends, they would differ by a rounding,
+/// and the point of one lip would lie inside a face of the other instead of on its corner.
+pub fn origin_positions(positions: &[DVec3], origins: &[VertexOrigin]) -> Vec<DVec3> {
+    use std::collections::HashMap;
+    let bits = |v: VertexId| positions[v.idx()].to_array().map(f64::to_bits);
+    // Edges and faces keyed apart: an edge's third corner is a value no finite
+    // coordinate has.
+    let mut first: HashMap<[[u64; 3]; 3], DVec3> = HashMap::new();
+    origins
+        .iter()
+        .map(|o| {
+            let p = origin_position(positions, o);
+            let key = match *o {
+                VertexOrigin::Edge { a, b, .. } => {
+                    let mut k = [bits(a), bits(b)];
+                    k.sort_unstable();
+                    [k[0], k[1], [u64::MAX; 3]]
+                }
+                VertexOrigin::Face { v, .. } => {
+                    let mut k = v.map(bits);
+                    k.sort_unstable();
+                    k
+                }
+                VertexOrigin::Copy { .. } => return p,
+            };
+            *first.entry(key).or_insert(p)
+        })
+        .collect()
+}
+
 /// The position of a new vertex from its origin.
-pub fn origin_position(positions: &[DVec3], origin: &VertexOrigin) -> DVec3 {
+fn origin_position(positions: &[DVec3], origin: &VertexOrigin) -> DVec3 {
     match *origin {
         VertexOrigin::Edge { a, b, t, .. } => {
             let (p, q) = (positions[a.idx()], positions[b.idx()]);

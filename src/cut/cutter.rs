@@ -4,7 +4,7 @@
 use super::bielser::Bielser17Nodes;
 use super::bvh::{QueryOptions, TetBvh};
 use super::classify::{
-    CutScratch, CutSession, NONE, StateCache, TetClass, VertexOrigin, origin_position,
+    CutScratch, CutSession, NONE, StateCache, TetClass, VertexOrigin, origin_positions,
 };
 use super::options::{CutError, CutOptions, Scheme};
 use super::report::{CutResult, CutStats, CutTimes, SplitRecord};
@@ -534,10 +534,7 @@ impl Cutter {
 /// their scales to `scales`.
 fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrigin]) {
     // New vertices are combinations of older ones only: positions can be computed first.
-    let new: Vec<DVec3> = origins
-        .iter()
-        .map(|o| origin_position(mesh.positions(), o))
-        .collect();
+    let new = origin_positions(mesh.positions(), origins);
     mesh.positions_vec_mut().extend(new);
     push_origin_rows(&mut mesh.point_data, scales, origins);
 }

@@ -94,7 +94,7 @@
 //!   in proportion to the pool, not to the cut (measured in `benches/table2.rs`).
 
 use super::classify::{CutScratch, CutSession, NONE, StateClassifier, TetClass, is_candidate};
-use super::classify::{VertexOrigin, origin_position};
+use super::classify::{VertexOrigin, origin_positions};
 use super::cutter::{push_origin_rows, unsnap};
 use super::options::{CutError, CutOptions};
 use super::split::{Children, split_tet};
@@ -651,10 +651,7 @@ impl MtCutter {
         // Commit: from here on the MT changes.
         let dag = Reach::new(mt);
         let mut open: OpenMt = self.mt.take().expect("MtCutter holds its MT").open();
-        let new_positions: Vec<DVec3> = origins
-            .iter()
-            .map(|o| origin_position(&open.positions, o))
-            .collect();
+        let new_positions = origin_positions(&open.positions, &origins);
         open.positions.extend(new_positions);
         push_origin_rows(&mut open.point_data, &mut self.scales, &origins);
         for &v in &copies {
