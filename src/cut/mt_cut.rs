@@ -75,8 +75,7 @@
 //!
 //! * **Almost no snapping** (`snap` at most [`MAX_MT_SNAP`]; [`MtCutter::DEFAULT_OPTIONS`]
 //!   has 1e-6, enough to keep cut points off the vertices' rounding, where 0 made inverted
-//!   children in the tests). Snapping a vertex
-//!   near the plane onto the cut bends the cut surface through it, and the side of a tet
+//!   children in the tests). Snapping a vertex near the plane onto the cut bends the cut surface through it, and the side of a tet
 //!   whose other vertices are all snapped is the side of its remaining vertex: two tets of
 //!   different levels on the same side of a snapped triangle can then take different sides,
 //!   so a fragment's floor sees the crack open at a face of its region's boundary where its
@@ -90,8 +89,14 @@
 //! * A vertex exactly on the cut whose tets in the finest mesh do not form one group per
 //!   side (the engine's *pinched* vertices and boundary saddles) is left unsnapped on every
 //!   level, as the engine does on a plain mesh; coarser levels are not analysed separately.
-//! * Closing the MT sorts the pool back into arcs: that part of the DAG update costs time
-//!   in proportion to the pool, not to the cut (measured in `benches/table2.rs`).
+//! * Closing the MT sorts the pool back into arcs, and grouping parts by body joins the
+//!   fragments through every tet of the pool: that part of the DAG update costs time in
+//!   proportion to the pool, not to the cut (measured in `benches/table2.rs`).
+//! * Every level is cut, so the pool grows with every cut by several tets per tet cut on
+//!   every level (the tests' 50 random cuts through fandisk take its pool from 0.15 M to
+//!   5.9 M tets).
+//! * A crack follows C up to a tet's size near C's contour (the tips, as on a plain
+//!   mesh): a later cut can cross an earlier polygon in that band.
 
 use super::classify::{CutScratch, CutSession, NONE, StateClassifier, TetClass, is_candidate};
 use super::classify::{VertexOrigin, origin_positions};
