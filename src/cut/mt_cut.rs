@@ -794,24 +794,26 @@ impl MtCutter {
         for (i, f) in order.iter().enumerate() {
             slot[f.idx()] = i as u32;
         }
-        // Floor and ceiling of each involved fragment, in pool order. Tets of fragments
-        // not involved join their creator and destroyer in `body` right away: bodies are
-        // the fragments, and the parts below, joined through the tets between them (the
-        // arcs).
+        // Bodies: the fragments, and the parts below, joined through the tets between them
+        // (the arcs). Between fragments not involved, the arcs before the cut still hold.
         let mut body: Vec<u32> = (0..nf as u32).collect();
+        for (f, succ) in dag.succ.iter().enumerate() {
+            if !involved[f] {
+                for &g in succ.iter().filter(|&&g| !involved[g as usize]) {
+                    union(&mut body, f as u32, g);
+                }
+            }
+        }
+        // Floor and ceiling of each involved fragment, in pool order.
         let mut floor: Vec<Vec<u32>> = vec![Vec::new(); order.len()];
         let mut ceiling: Vec<Vec<u32>> = vec![Vec::new(); order.len()];
         for t in 0..open.tets.len() {
-            let (cf, df) = (open.creator[t], open.destroyer[t]);
-            let (c, d) = (slot[cf.idx()], slot[df.idx()]);
+            let (c, d) = (slot[open.creator[t].idx()], slot[open.destroyer[t].idx()]);
             if c != u32::MAX {
                 ceiling[c as usize].push(t as u32);
             }
             if d != u32::MAX {
                 floor[d as usize].push(t as u32);
-            }
-            if c == u32::MAX && d == u32::MAX {
-                union(&mut body, cf.0, df.0);
             }
         }
         // The local parts of each involved fragment, each with a provisional id after the
