@@ -208,7 +208,9 @@ typedef struct mtcut_cut_options {
   double snap;
   /**
    * Crack tips inside a face stay at least this fraction of their segment from its
-   * ends, in [0, 0.5]. Default 0.5 (the middle: best element quality).
+   * ends, in [0.01, 0.5] (nearer, children come out flat). Default 0.5 (the middle:
+   * best element quality; smaller values follow the polygon's contour more closely,
+   * which a blade swept in steps needs for its cracks to join).
    */
   double face_point_margin;
   /**

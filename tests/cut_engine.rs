@@ -9,8 +9,8 @@ mod mtcut_common;
 
 use cut_common::*;
 use mtcut::cut::{
-    CUT_COLUMN, Components, CutCase, CutError, CutOptions, Cutter, MIN_SNAP, Scheme, VertexOrigin,
-    cut_mesh,
+    CUT_COLUMN, Components, CutCase, CutError, CutOptions, Cutter, MIN_FACE_POINT_MARGIN, MIN_SNAP,
+    Scheme, VertexOrigin, cut_mesh,
 };
 use mtcut::geom::{CutPolygon, DVec3, PolygonError, Tolerance, scalpel_sweep};
 use mtcut::mesh::{Attribute, TetMesh, ViolationKind};
@@ -395,7 +395,50 @@ fn bad_input_is_refused_with_a_reason() {
     assert!(r.stats.tets_cut > 0);
     let report = m.validate();
     assert!(report.is_valid(), "{report}");
-    assert!(Cutter::new(before, CutOptions::DEFAULT.with_face_point_margin(-1.0)).is_err());
+    assert!(
+        Cutter::new(
+            before.clone(),
+            CutOptions::DEFAULT.with_face_point_margin(-1.0)
+        )
+        .is_err()
+    );
+    // Nearer the ends than MIN_FACE_POINT_MARGIN, face points make flat children.
+    assert!(Cutter::new(before, CutOptions::DEFAULT.with_face_point_margin(0.0)).is_err());
+}
+
+#[test]
+fn a_blade_swept_across_the_body_separates_it() {
+    // A blade (a segment longer than the body is high) swept across it in 12 steps, each
+    // step cutting the quadrilateral it swept: the cracks of consecutive steps must join,
+    // so the body ends in two parts, valid after every step. With face points at the
+    // smallest margin the tips follow each step's contour, where the next step begins.
+    let options = CutOptions::DEFAULT.with_face_point_margin(MIN_FACE_POINT_MARGIN);
+    for name in ["fandisk", "liver"] {
+        let input = mesh(name);
+        let (b, volume) = (input.bbox(), input.volume());
+        let (c, d) = (b.center(), b.max - b.min);
+        let blade = |x: f64| {
+            [
+                DVec3::new(x, c.y + 0.013 * d.y, b.min.z - 0.1 * d.z),
+                DVec3::new(x, c.y - 0.011 * d.y, b.max.z + 0.1 * d.z),
+            ]
+        };
+        let x = |k: usize| b.min.x - 0.05 * d.x + 1.1 * d.x * k as f64 / 12.0;
+        let mut cutter = Cutter::new(input.clone(), options).expect("options");
+        for k in 0..12 {
+            let sweep = scalpel_sweep(blade(x(k)), blade(x(k + 1)), Tolerance { relative: 1e-9 })
+                .expect("sweep");
+            for polygon in &sweep {
+                cutter.cut(polygon).expect("cut");
+            }
+            let report = cutter.mesh().validate();
+            assert!(report.is_valid(), "{name}, step {k}: {report}");
+            let v = cutter.mesh().volume();
+            assert!((v - volume).abs() <= 1e-12 * volume, "{name}, step {k}");
+        }
+        let parts = Components::of(cutter.mesh()).count;
+        assert_eq!(parts, 2, "{name}: the swept blade left {parts} parts");
+    }
 }
 
 #[test]

@@ -95,7 +95,7 @@ pub use classify::{CutScratch, CutSession, TetClass, VertexOrigin};
 pub use components::Components;
 pub use cutter::{CUT_COLUMN, Cutter, cut_mesh, vertex_scales};
 pub use mt_cut::{MtCutStats, MtCutTimes, MtCutter};
-pub use options::{CutError, CutOptions, MIN_SNAP, Scheme};
+pub use options::{CutError, CutOptions, MIN_FACE_POINT_MARGIN, MIN_SNAP, Scheme};
 pub use report::{CutResult, CutStats, CutTimes, SplitRecord};
 pub use tables::{CutCase, Side};
 
