@@ -298,3 +298,41 @@ fn a_blade_swept_across_the_mt_stays_valid() {
         );
     }
 }
+
+/// Three cuts straight through fandisk: the MT should hold one independent component per
+/// piece the cuts leave (the same at the finest and the coarsest level).
+#[test]
+#[ignore = "KNOWN FAILURE (issue 6 open): after the second cut, 3 MTs for 4 pieces (6 for 8 after the third); see MtCutter's limits"]
+fn mt_components_follow_the_pieces() {
+    use mtcut::geom::{Aabb, DVec3};
+    let mt = mt_common::built("fandisk").1.clone();
+    let b = Aabb::from_points(mt.positions());
+    let (e, reach) = (b.max - b.min, 2.0 * b.diagonal() + 1.0);
+    let plane = |n: DVec3, offset: f64| {
+        let origin = b.center() - n * (n.dot(b.center()) - offset);
+        let u = n.any_orthonormal_vector() * reach;
+        let w = n.cross(u);
+        CutPolygon::new(&[
+            origin - u - w,
+            origin + u - w,
+            origin + u + w,
+            origin - u + w,
+        ])
+        .expect("square")
+    };
+    let mut c = MtCutter::new(mt, MtCutter::DEFAULT_OPTIONS).expect("options");
+    for p in [
+        plane(DVec3::X, b.min.x + 0.25 * e.x),
+        plane(DVec3::Y, b.min.y + 0.65 * e.y),
+        plane(DVec3::Z, b.min.z + 0.65 * e.z),
+    ] {
+        c.cut(&p).expect("cut");
+        let finest = c
+            .mt()
+            .extract(&ExtractOptions::FINEST)
+            .expect("finest")
+            .mesh;
+        let pieces = mtcut::cut::Components::of(&finest).count;
+        assert_eq!(c.mt().nb_components(), pieces);
+    }
+}

@@ -95,6 +95,18 @@
 //! * Every level is cut, so the pool grows with every cut by several tets per tet cut on
 //!   every level (the tests' 50 random cuts through fandisk take its pool from 0.15 M to
 //!   5.9 M tets).
+//! * A cut continuing an earlier crack in its own plane (a blade swept in steps) breaks
+//!   the coarser levels: the earlier crack tips (face points, up to the snapping distance
+//!   off the plane) are snapped onto the new cut and duplicated, and a child lying flat in
+//!   the plane between the lips takes one side (tests/mtcut_cut.rs,
+//!   `a_blade_swept_across_the_mt_stays_valid`, ignored). The finest level stays valid.
+//! * After several cuts straight through, pieces the later cuts separate can stay in one
+//!   independent MT (measured: fandisk cut by the planes x = 25 %, y = 65 %, z = 65 % of its
+//!   box gives 8 pieces at every level but 6 MTs; `mt_components_follow_the_pieces`,
+//!   ignored): grouping the parts by body joins some parts on opposite sides of the new
+//!   cut, not yet found why. Every MT stays valid, and its extractions are valid meshes
+//!   (two pieces then come in one mesh). The paper's split by local part gives 8, but
+//!   extracts the lips of a crack ending inside the body at different resolutions.
 //! * A crack follows C up to a tet's size near C's contour (the tips, as on a plain
 //!   mesh): a later cut can cross an earlier polygon in that band.
 
