@@ -10,7 +10,7 @@
 //! to four items. Nodes are stored depth-first, the left child right after its
 //! parent, so a traversal walks memory mostly forwards.
 
-use super::{FragmentKind, Mt};
+use super::{BoxF32, FragmentKind, Mt};
 use crate::geom::{Aabb, DVec3};
 use crate::mesh::FragmentId;
 
@@ -50,7 +50,20 @@ impl Bvh {
 
     /// Calls `on_item` for every item in a leaf reached by descending only into nodes whose
     /// box satisfies `descend`.
-    pub fn query(&self, mut descend: impl FnMut(&Aabb) -> bool, mut on_item: impl FnMut(u32)) {
+    pub fn query(&self, descend: impl FnMut(&Aabb) -> bool, mut on_item: impl FnMut(u32)) {
+        self.walk(descend, |range| {
+            for &item in &self.items[range] {
+                on_item(item);
+            }
+        });
+    }
+
+    /// [`Bvh::query`] by leaves: `on_leaf` gets the leaf's range of positions in `items`.
+    fn walk(
+        &self,
+        mut descend: impl FnMut(&Aabb) -> bool,
+        mut on_leaf: impl FnMut(std::ops::Range<usize>),
+    ) {
         if self.nodes.is_empty() {
             return;
         }
@@ -67,9 +80,7 @@ impl Bvh {
             }
             if node.count > 0 {
                 let s = node.first as usize;
-                for &item in &self.items[s..s + node.count as usize] {
-                    on_item(item);
-                }
+                on_leaf(s..s + node.count as usize);
             } else {
                 stack[top] = node.first;
                 stack[top + 1] = i + 1;
@@ -184,6 +195,18 @@ impl Region {
         }
     }
 
+    /// Whether the whole box lies in the (closed) region.
+    pub fn contains_box(&self, b: &Aabb) -> bool {
+        match self {
+            Region::Sphere { center, radius } => {
+                // The corner farthest from the centre decides.
+                let far = (*center - b.min).abs().max((b.max - *center).abs());
+                far.length_squared() <= radius * radius
+            }
+            Region::Box(r) => r.contains(b.min) && r.contains(b.max),
+        }
+    }
+
     /// Whether `p` lies in the (closed) region.
     pub fn contains(&self, p: DVec3) -> bool {
         match self {
@@ -209,6 +232,20 @@ impl Region {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct FragmentBvh {
     bvh: Bvh,
+    /// Box and error of each item, in the hierarchy's item order: a walk reads them with
+    /// the leaf instead of from fragment rows scattered over the MT (which, cold after an
+    /// extraction, cost a cache miss each).
+    entries: Vec<(BoxF32, f64)>,
+}
+
+/// A fragment a [`FragmentBvh`] walk reached.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FragmentHit {
+    pub fragment: FragmentId,
+    /// The fragment's box, as [`Mt::fragment_bbox`] gives it.
+    pub bbox: Aabb,
+    /// The fragment's error, as [`Mt::fragment_error`] gives it.
+    pub error: f64,
 }
 
 impl FragmentBvh {
@@ -222,9 +259,28 @@ impl FragmentBvh {
                 }
             })
             .collect();
-        FragmentBvh {
-            bvh: Bvh::new(&boxes),
-        }
+        let bvh = Bvh::new(&boxes);
+        let entries = bvh
+            .items
+            .iter()
+            .map(|&i| (mt.bbox[i as usize], mt.error[i as usize]))
+            .collect();
+        FragmentBvh { bvh, entries }
+    }
+
+    /// Calls `on_hit` for every fragment in a leaf reached by descending only into nodes
+    /// whose box satisfies `descend` (see [`Bvh::query`]).
+    pub fn query(&self, descend: impl FnMut(&Aabb) -> bool, mut on_hit: impl FnMut(FragmentHit)) {
+        self.bvh.walk(descend, |range| {
+            for k in range {
+                let (bbox, error) = self.entries[k];
+                on_hit(FragmentHit {
+                    fragment: FragmentId(self.bvh.items[k]),
+                    bbox: bbox.to_aabb(),
+                    error,
+                });
+            }
+        });
     }
 
     /// Calls `f` for every fragment of `mt` (the MT this hierarchy was built from) whose
@@ -243,7 +299,7 @@ impl FragmentBvh {
     }
 
     pub fn heap_bytes(&self) -> usize {
-        self.bvh.heap_bytes()
+        self.bvh.heap_bytes() + self.entries.capacity() * std::mem::size_of::<(BoxF32, f64)>()
     }
 }
 
@@ -282,5 +338,41 @@ mod tests {
             .collect();
         assert_eq!(found, expect);
         assert!(expect.len() >= 4);
+    }
+
+    #[test]
+    fn contains_box_agrees_with_the_corners() {
+        let b = Aabb {
+            min: DVec3::new(0.0, 0.0, 0.0),
+            max: DVec3::new(1.0, 2.0, 3.0),
+        };
+        let corners: Vec<DVec3> = (0..8)
+            .map(|k| {
+                DVec3::select(
+                    glam::BVec3::new(k & 1 != 0, k & 2 != 0, k & 4 != 0),
+                    b.max,
+                    b.min,
+                )
+            })
+            .collect();
+        for (center, radius) in [
+            (DVec3::new(0.5, 1.0, 1.5), 1.9),
+            (DVec3::new(0.5, 1.0, 1.5), 1.8),
+            (DVec3::new(3.0, -1.0, 0.0), 4.0),
+            (DVec3::new(3.0, -1.0, 0.0), 6.0),
+        ] {
+            let s = Region::Sphere { center, radius };
+            assert_eq!(s.contains_box(&b), corners.iter().all(|&c| s.contains(c)));
+        }
+        let inside = Region::Box(Aabb {
+            min: DVec3::splat(-1.0),
+            max: DVec3::splat(3.0),
+        });
+        let across = Region::Box(Aabb {
+            min: DVec3::splat(0.5),
+            max: DVec3::splat(4.0),
+        });
+        assert!(inside.contains_box(&b));
+        assert!(!across.contains_box(&b));
     }
 }

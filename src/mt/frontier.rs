@@ -19,8 +19,9 @@
 //! then apply only the difference.
 
 use super::bvh::FragmentBvh;
-use super::extract::{ExtractError, ExtractOptions, Extraction};
+use super::extract::{ExtractError, ExtractOptions, Extraction, Focus};
 use super::{FragmentKind, GHOST, Mt};
+use crate::geom::Aabb;
 use crate::mesh::{FragmentId, TetId, VertexId};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -54,13 +55,13 @@ pub struct Frontier {
     local: Vec<[u32; 4]>,
     free_tets: Vec<u32>,
     live_tets: usize,
-    // Vertices: pool vertex → slot, slot → pool vertex / number of tets using it.
-    slot_of_vertex: Vec<u32>,
+    // Vertices: pool vertex → slot and number of tets using it (side by side: an update
+    // reads both for every corner it touches), slot → pool vertex.
+    vertex_state: Vec<VertexState>,
     vertices: Vec<VertexId>,
-    uses: Vec<u32>,
     free_vertices: Vec<u32>,
-    /// Vertex slots whose use count fell to zero during the current update.
-    unused: Vec<u32>,
+    /// Pool vertices whose use count fell to zero during the current update.
+    unused: Vec<VertexId>,
     live_vertices: usize,
     // Indexes for finding candidates, built on first need.
     bvh: Option<FragmentBvh>,
@@ -83,9 +84,14 @@ impl Frontier {
             local: Vec::new(),
             free_tets: Vec::new(),
             live_tets: 0,
-            slot_of_vertex: vec![NONE; mt.nb_vertices()],
+            vertex_state: vec![
+                VertexState {
+                    slot: NONE,
+                    uses: 0
+                };
+                mt.nb_vertices()
+            ],
             vertices: Vec::new(),
-            uses: Vec::new(),
             free_vertices: Vec::new(),
             unused: Vec::new(),
             live_vertices: 0,
@@ -149,9 +155,9 @@ impl Frontier {
 
     /// The slot of MT vertex `v`, if it is in the mesh.
     pub fn slot_of_vertex(&self, v: VertexId) -> Option<u32> {
-        self.slot_of_vertex
+        self.vertex_state
             .get(v.idx())
-            .copied()
+            .map(|s| s.slot)
             .filter(|&s| s != NONE)
     }
 
@@ -212,8 +218,8 @@ impl Frontier {
         // Refine: candidates now wanting refinement, and everything that depends on them.
         let mut stack: Vec<u32> = candidates
             .iter()
-            .copied()
-            .filter(|&f| !self.refined[f as usize] && mt.wants_refinement(f as usize, options))
+            .filter(|&&(f, wants)| wants && !self.refined[f as usize])
+            .map(|&(f, _)| f)
             .collect();
         for &f in &stack {
             self.refined[f as usize] = true;
@@ -231,18 +237,20 @@ impl Frontier {
         }
         // Coarsen: candidates no longer wanting refinement, fine to coarse (by level),
         // each once all it depends on is applied; applying one may free its successors.
+        // Only fragments that may be applied enter the heap (requests do not change
+        // during the update, so that is decided once, at the push).
+        let coarsenable = |refined: &[bool], f: usize| {
+            refined[f] && mt.kind[f] == FragmentKind::Collapse && !mt.wants_refinement(f, options)
+        };
         let mut heap: BinaryHeap<Reverse<(u32, u32)>> = candidates
             .iter()
-            .copied()
-            .filter(|&f| self.refined[f as usize])
-            .map(|f| Reverse((mt.level[f as usize], f)))
+            .filter(|&&(f, wants)| !wants && self.refined[f as usize])
+            .map(|&(f, _)| Reverse((mt.level[f as usize], f)))
             .collect();
         while let Some(Reverse((_, f))) = heap.pop() {
             let fu = f as usize;
-            if !self.refined[fu]
-                || mt.kind[fu] != FragmentKind::Collapse
-                || mt.wants_refinement(fu, options)
-            {
+            // Pushed once per applied predecessor: only the first pop applies it.
+            if !self.refined[fu] {
                 continue;
             }
             let ready = mt
@@ -256,7 +264,7 @@ impl Frontier {
             changed.push(f);
             for a in mt.out_arcs(FragmentId(f)) {
                 let d = mt.arc_destroyer(a as usize);
-                if self.refined[d.idx()] {
+                if coarsenable(&self.refined, d.idx()) {
                     heap.push(Reverse((mt.level[d.idx()], d.0)));
                 }
             }
@@ -328,11 +336,12 @@ impl Frontier {
             }
         }
         let unused = std::mem::take(&mut self.unused);
-        for &s in &unused {
-            if self.uses[s as usize] == 0 {
-                let v = self.vertices[s as usize];
+        for &v in &unused {
+            let state = &mut self.vertex_state[v.idx()];
+            if state.uses == 0 {
+                let s = state.slot;
+                state.slot = NONE;
                 self.vertices[s as usize] = VertexId::INVALID;
-                self.slot_of_vertex[v.idx()] = NONE;
                 self.free_vertices.push(s);
                 self.live_vertices -= 1;
             }
@@ -341,15 +350,16 @@ impl Frontier {
         self.unused.clear();
     }
 
-    /// The fragments whose threshold can differ between the current and the new options.
-    fn candidates(&mut self, mt: &Mt, new: &ExtractOptions) -> Vec<u32> {
+    /// The fragments whose threshold can differ between the current and the new options
+    /// (all of them collapses), each with whether it wants refinement under the new ones.
+    fn candidates(&mut self, mt: &Mt, new: &ExtractOptions) -> Vec<(u32, bool)> {
         let old = self.options;
-        let mut out: Vec<u32> = Vec::new();
+        let mut out: Vec<(u32, bool)> = Vec::new();
         let mark = &mut self.mark;
-        let mut add = |f: u32, out: &mut Vec<u32>| {
+        let mut add = |f: u32, wants: bool, out: &mut Vec<(u32, bool)>| {
             if !mark[f as usize] {
                 mark[f as usize] = true;
-                out.push(f);
+                out.push((f, wants));
             }
         };
         if old.threshold != new.threshold {
@@ -367,23 +377,35 @@ impl Frontier {
             let from = by_error.partition_point(|&f| mt.error[f as usize] <= lo);
             let to = by_error.partition_point(|&f| mt.error[f as usize] <= hi);
             for &f in &by_error[from..to] {
-                add(f, &mut out);
+                add(f, mt.wants_refinement(f as usize, new), &mut out);
             }
         }
         if old.focus != new.focus {
-            // Only fragments whose threshold differs: where the old and new regions
-            // overlap with the same focus threshold, nothing changes.
+            // Only fragments whose threshold differs, in one walk over both regions: a
+            // node whose box lies inside both regions with the same focus threshold keeps
+            // that threshold for everything under it, so the walk skips the (large)
+            // overlap of a focus moved a little.
             let bvh = self.bvh.get_or_insert_with(|| FragmentBvh::new(mt));
-            for focus in [old.focus, new.focus].into_iter().flatten() {
-                bvh.for_each_in(mt, &focus.region, |f| {
-                    let b = mt.fragment_bbox(f);
-                    if old.tau(&b) != new.tau(&b) {
-                        add(f.0, &mut out)
+            let meets = |f: &Option<Focus>, b: &Aabb| f.is_some_and(|f| f.region.intersects(b));
+            let unchanged_inside = match (old.focus, new.focus) {
+                (Some(a), Some(b)) if a.threshold == b.threshold => Some((a.region, b.region)),
+                _ => None,
+            };
+            bvh.query(
+                |b| {
+                    (meets(&old.focus, b) || meets(&new.focus, b))
+                        && !unchanged_inside
+                            .is_some_and(|(ra, rb)| ra.contains_box(b) && rb.contains_box(b))
+                },
+                |hit| {
+                    let tau = new.tau(&hit.bbox);
+                    if old.tau(&hit.bbox) != tau {
+                        add(hit.fragment.0, hit.error > tau, &mut out)
                     }
-                });
-            }
+                },
+            );
         }
-        for &f in &out {
+        for &(f, _) in &out {
             self.mark[f as usize] = false;
         }
         out
@@ -417,6 +439,7 @@ impl Frontier {
         true
     }
 
+    /// Takes pool tet `t` out of the mesh; ghosts (never in it) are skipped.
     fn remove_tet(&mut self, mt: &Mt, t: TetId) -> bool {
         let tet = mt.tet(t);
         if tet[3] == GHOST {
@@ -435,34 +458,39 @@ impl Frontier {
     }
 
     fn use_vertex(&mut self, v: VertexId) -> u32 {
-        let s = self.slot_of_vertex[v.idx()];
-        if s != NONE {
-            self.uses[s as usize] += 1;
-            return s;
+        let state = &mut self.vertex_state[v.idx()];
+        state.uses += 1;
+        if state.slot != NONE {
+            return state.slot;
         }
         let s = match self.free_vertices.pop() {
             Some(s) => {
                 self.vertices[s as usize] = v;
-                self.uses[s as usize] = 1;
                 s
             }
             None => {
                 self.vertices.push(v);
-                self.uses.push(1);
                 (self.vertices.len() - 1) as u32
             }
         };
-        self.slot_of_vertex[v.idx()] = s;
+        state.slot = s;
         self.live_vertices += 1;
         s
     }
 
     /// One tet fewer uses `v`; at none it is listed for release at the end of the update.
     fn release_vertex(&mut self, v: VertexId) {
-        let s = self.slot_of_vertex[v.idx()];
-        self.uses[s as usize] -= 1;
-        if self.uses[s as usize] == 0 {
-            self.unused.push(s);
+        let state = &mut self.vertex_state[v.idx()];
+        state.uses -= 1;
+        if state.uses == 0 {
+            self.unused.push(v);
         }
     }
+}
+
+/// Where a pool vertex sits in the mesh and how many of its tets use it.
+#[derive(Clone, Copy, Debug)]
+struct VertexState {
+    slot: u32,
+    uses: u32,
 }

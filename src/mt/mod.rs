@@ -63,7 +63,7 @@ pub mod frontier;
 pub mod validate;
 
 pub use build::{BuildError, BuildOptions, BuildPhase, BuildProgress, BuildStats, Rejections};
-pub use bvh::{Bvh, FragmentBvh, Region};
+pub use bvh::{Bvh, FragmentBvh, FragmentHit, Region};
 pub use canonical::{CanonicalFragment, CanonicalMt, TetKey};
 pub use edit::OpenMt;
 pub use error::{BoundaryError, ErrorMetric, QualityError, TetError, TetSample, VolumeError};
