@@ -920,8 +920,8 @@ impl Reach {
     fn new(mt: &Mt) -> Reach {
         let nf = mt.nb_fragments();
         let mut succ = vec![Vec::new(); nf];
-        for a in 0..mt.nb_arcs() {
-            succ[mt.arc_creator(a).idx()].push(mt.arc_destroyer(a).0);
+        for (_, c, d) in mt.arcs() {
+            succ[c.idx()].push(d.0);
         }
         for s in &mut succ {
             s.sort_unstable();

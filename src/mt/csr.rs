@@ -1,10 +1,8 @@
-//! Compressed sparse rows: the lists "arcs out of fragment f" and "arcs into fragment f",
-//! one flat array each, so the DAG costs no per-fragment allocation.
+//! Compressed sparse rows: lists such as "the predecessors of fragment f", one flat array
+//! each, so the DAG costs no per-fragment allocation.
 //!
-//! When every row is a contiguous range of consecutive items (the arcs out of each
-//! fragment, right after a build, because the pool is ordered by creator), the items are
-//! not stored: the offsets alone describe the rows. After cuts append arcs out of order
-//! the explicit form is used.
+//! When every row is a contiguous range of consecutive items, the items are not stored:
+//! the offsets alone describe the rows.
 
 /// Row `i` holds items `offsets[i]..offsets[i + 1]` of `items`, or, when `items` is
 /// `None`, the numbers in that range themselves.

@@ -38,10 +38,10 @@ impl Mt {
         let nt = self.nb_tets();
         let mut creator = Vec::with_capacity(nt);
         let mut destroyer = Vec::with_capacity(nt);
-        for a in 0..self.nb_arcs() {
+        for (a, c, d) in self.arcs() {
             let n = self.arc_tets(a).len();
-            creator.extend(std::iter::repeat_n(self.arc_creator[a], n));
-            destroyer.extend(std::iter::repeat_n(self.arc_destroyer[a], n));
+            creator.extend(std::iter::repeat_n(c, n));
+            destroyer.extend(std::iter::repeat_n(d, n));
         }
         OpenMt {
             positions: self.positions,
@@ -69,11 +69,8 @@ impl Mt {
             }
             i
         }
-        for a in 0..self.nb_arcs() {
-            let (x, y) = (
-                find(&mut parent, self.arc_creator[a].0),
-                find(&mut parent, self.arc_destroyer[a].0),
-            );
+        for (_, c, d) in self.arcs() {
+            let (x, y) = (find(&mut parent, c.0), find(&mut parent, d.0));
             if x != y {
                 parent[x.max(y) as usize] = x.min(y);
             }

@@ -227,7 +227,7 @@ impl Mt {
             .collect();
         let mut stack: Vec<u32> = (0..nf as u32).filter(|&f| refined[f as usize]).collect();
         while let Some(f) = stack.pop() {
-            for a in self.out_arcs.row(f as usize) {
+            for a in self.out_arcs(FragmentId(f)) {
                 let d = self.arc_destroyer[a as usize].idx();
                 if !refined[d] {
                     refined[d] = true;
@@ -259,20 +259,21 @@ impl Mt {
                     ratio(self.error[f], options.tau(&self.bbox[f].to_aabb()))
                 }
             };
-            demand[f] = self.in_arcs.row(f).iter().fold(own, |m, a| {
-                m.max(demand[self.arc_creator[a as usize].idx()])
-            });
+            demand[f] = self
+                .predecessors(FragmentId::from_usize(f))
+                .iter()
+                .fold(own, |m, c| m.max(demand[c as usize]));
         }
         // Net change in real tets when a fragment is refined: its floor appears, its
         // ceiling goes.
         let mut delta = vec![0i64; nf];
-        for a in 0..self.nb_arcs() {
+        for (a, c, d) in self.arcs() {
             let real = self.tets[self.arc_tets(a)]
                 .iter()
                 .filter(|t| t[3] != super::GHOST)
                 .count() as i64;
-            delta[self.arc_destroyer[a].idx()] += real;
-            delta[self.arc_creator[a].idx()] -= real;
+            delta[d.idx()] += real;
+            delta[c.idx()] -= real;
         }
         let mut order: Vec<u32> = (0..nf as u32).filter(|&f| wanted[f as usize]).collect();
         order.sort_unstable_by(|&x, &y| {
@@ -311,10 +312,6 @@ impl Mt {
     /// The non-ghost tets of the frontier of `refined` (arcs from applied fragments into
     /// refined ones), in pool order, with their creators.
     pub(crate) fn frontier_tets(&self, refined: &[bool]) -> (Vec<TetId>, Vec<FragmentId>) {
-        let in_frontier = |a: u32| {
-            let a = a as usize;
-            !refined[self.arc_creator[a].idx()] && refined[self.arc_destroyer[a].idx()]
-        };
         // Every frontier arc enters a refined fragment: when the refined fragments have
         // few arcs in (coarse extractions), look there instead of at every arc.
         let refined_list: Vec<u32> = (0..refined.len() as u32)
@@ -323,26 +320,39 @@ impl Mt {
             .collect();
         let arcs_in: usize = refined_list
             .iter()
-            .map(|&f| self.in_arcs.row(f as usize).len())
+            .map(|&f| self.predecessors(FragmentId(f)).len())
             .sum();
-        let arcs: Vec<u32> = if arcs_in * 4 < self.nb_arcs() {
-            let mut v: Vec<u32> = refined_list
+        // (arc, creator) in arc order.
+        let arcs: Vec<(u32, FragmentId)> = if arcs_in * 4 < self.nb_arcs() {
+            let mut v: Vec<(u32, FragmentId)> = refined_list
                 .iter()
-                .flat_map(|&f| self.in_arcs.row(f as usize))
-                .filter(|&a| in_frontier(a))
+                .flat_map(|&f| {
+                    self.predecessors(FragmentId(f))
+                        .into_iter()
+                        .filter(|&c| !refined[c as usize])
+                        .filter_map(move |c| {
+                            let (c, f) = (FragmentId(c), FragmentId(f));
+                            self.arc_between(c, f).map(|a| (a as u32, c))
+                        })
+                })
                 .collect();
-            v.sort_unstable();
+            v.sort_unstable_by_key(|p| p.0);
             v
         } else {
-            (0..self.nb_arcs() as u32)
+            (0..refined.len() as u32)
                 .into_par_iter()
-                .filter(|&a| in_frontier(a))
+                .filter(|&c| !refined[c as usize])
+                .flat_map_iter(|c| {
+                    self.out_arcs(FragmentId(c))
+                        .into_iter()
+                        .filter(|&a| refined[self.arc_destroyer[a as usize].idx()])
+                        .map(move |a| (a, FragmentId(c)))
+                })
                 .collect()
         };
         let mut tets = Vec::new();
         let mut creators = Vec::new();
-        for &a in &arcs {
-            let c = self.arc_creator[a as usize];
+        for &(a, c) in &arcs {
             for t in self.arc_tets(a as usize) {
                 if self.tets[t][3] != super::GHOST {
                     tets.push(TetId::from_usize(t));

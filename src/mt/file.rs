@@ -131,7 +131,10 @@ impl Mt {
         for &s in &self.arc_start {
             w.u32(s);
         }
-        for f in self.arc_creator.iter().chain(&self.arc_destroyer) {
+        for (_, c, _) in self.arcs() {
+            w.u32(c.0);
+        }
+        for f in &self.arc_destroyer {
             w.u32(f.0);
         }
         w.0.extend(self.kind.iter().map(|k| k.code()));

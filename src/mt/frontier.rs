@@ -254,9 +254,9 @@ impl Frontier {
                 continue;
             }
             let ready = mt
-                .in_arcs(FragmentId(f))
+                .predecessors(FragmentId(f))
                 .iter()
-                .all(|a| !self.refined[mt.arc_creator(a as usize).idx()]);
+                .all(|c| !self.refined[c as usize]);
             if !ready {
                 continue;
             }
@@ -292,8 +292,9 @@ impl Frontier {
             self.mark[f as usize] = true;
         }
         let before = |s: &Self, x: FragmentId| s.refined[x.idx()] != s.mark[x.idx()];
-        let mut added: Vec<u32> = Vec::new();
-        let mut removed: Vec<u32> = Vec::new();
+        // Arcs entering and leaving the mesh, each with its creator.
+        let mut added: Vec<(u32, FragmentId)> = Vec::new();
+        let mut removed: Vec<(u32, FragmentId)> = Vec::new();
         for &f in &flipped {
             if self.refined[f as usize] {
                 stats.refined += 1;
@@ -301,20 +302,29 @@ impl Frontier {
                 stats.coarsened += 1;
             }
             let fid = FragmentId(f);
-            let outs = mt.out_arcs(fid).into_iter();
+            let outs = mt
+                .out_arcs(fid)
+                .into_iter()
+                .map(|a| (Some(a), fid, mt.arc_destroyer(a as usize)));
             // An arc between two flipped fragments is visited from its creator only.
             let ins = mt
-                .in_arcs(fid)
+                .predecessors(fid)
                 .into_iter()
-                .filter(|&a| !self.mark[mt.arc_creator(a as usize).idx()]);
-            for a in outs.chain(ins) {
-                let (c, d) = (mt.arc_creator(a as usize), mt.arc_destroyer(a as usize));
+                .filter(|&c| !self.mark[c as usize])
+                .map(|c| (None, FragmentId(c), fid));
+            for (arc, c, d) in outs.chain(ins) {
                 let was = !before(self, c) && before(self, d);
                 let now = !self.refined[c.idx()] && self.refined[d.idx()];
-                if now && !was {
-                    added.push(a);
-                } else if was && !now {
-                    removed.push(a);
+                if now != was {
+                    // An in-arc is looked up only when its tets move.
+                    let Some(a) = arc.or_else(|| mt.arc_between(c, d).map(|a| a as u32)) else {
+                        continue;
+                    };
+                    if now {
+                        added.push((a, c));
+                    } else {
+                        removed.push((a, c));
+                    }
                 }
             }
         }
@@ -324,13 +334,12 @@ impl Frontier {
         // Removals first, so additions reuse the slots just freed (still in cache); a
         // vertex whose last tet leaves is only released at the end, if no incoming tet
         // took it up again, so a vertex that stays in the mesh keeps its slot.
-        for &a in &removed {
+        for &(a, _) in &removed {
             for t in mt.arc_tets(a as usize) {
                 stats.tets_removed += usize::from(self.remove_tet(mt, TetId::from_usize(t)));
             }
         }
-        for &a in &added {
-            let c = mt.arc_creator(a as usize);
+        for &(a, c) in &added {
             for t in mt.arc_tets(a as usize) {
                 stats.tets_added += usize::from(self.add_tet(mt, TetId::from_usize(t), c));
             }

@@ -20,13 +20,17 @@
 //!   create. Ghosts are never extracted. Per-tet attributes of the input live here too, one
 //!   row per pool tet, inherited by the tets that replace them.
 //! * **Arcs.** The pool is ordered so that the tets created by fragment `i` and destroyed by
-//!   fragment `j` are contiguous: that run is the paper's arc `(Σi, Σj, Fj ∩ Σi)`, stored as
-//!   its start, creator and destroyer. Each tet therefore has exactly one creator and one
-//!   destroyer ([`Mt::tet_creator`], [`Mt::tet_destroyer`], by binary search) without a
-//!   per-tet column: at about three pool tets per input tet, two `u32` columns would cost
-//!   24 bytes per input tet, against a budget of 100 for the whole model.
+//!   fragment `j` are contiguous: that run is the paper's arc `(Σi, Σj, Fj ∩ Σi)`. Arcs are
+//!   sorted by creator, then destroyer, so an arc is stored as its start and destroyer only:
+//!   the arcs of creator `i` are a range ([`Mt::out_arcs`]). Each tet therefore has exactly
+//!   one creator and one destroyer ([`Mt::tet_creator`], [`Mt::tet_destroyer`], by binary
+//!   search) without a per-tet column: at about three pool tets per input tet, two `u32`
+//!   columns would cost 24 bytes per input tet, against a budget of 100 for the whole
+//!   model (a creator column per arc would cost 4.7).
 //! * **Fragments** (DAG nodes): kind (root, collapse, drain), error, level (longest path
-//!   from a root), bounding box of floor and ceiling, and their out- and in-arcs.
+//!   from a root), bounding box of floor and ceiling, their out-arcs (a range) and their
+//!   predecessors (the creators of their in-arcs, one per arc, from which
+//!   [`Mt::in_arcs`] finds the arcs).
 //!   The root creates the input mesh (and its ghosts); the drain destroys the coarsest mesh.
 //!   Several root/drain pairs may coexist ([`Mt::roots`], [`Mt::drains`]): a body cut
 //!   through becomes independent MTs within one store.
@@ -160,7 +164,6 @@ pub struct Mt {
     cell_data: Attributes,
     /// `arc_start[a]..arc_start[a + 1]` are the pool tets of arc `a`; one extra entry.
     arc_start: Vec<u32>,
-    arc_creator: Vec<FragmentId>,
     arc_destroyer: Vec<FragmentId>,
     kind: Vec<FragmentKind>,
     error: Vec<f64>,
@@ -168,8 +171,11 @@ pub struct Mt {
     // Derived by `assemble`.
     level: Vec<u32>,
     bbox: Vec<BoxF32>,
-    out_arcs: Csr,
-    in_arcs: Csr,
+    /// `out_start[f]..out_start[f + 1]` are the arcs `f` creates (arcs are sorted by
+    /// creator); one extra entry.
+    out_start: Vec<u32>,
+    /// By destroyer, the creators of its in-arcs (sorted: arcs are sorted by creator).
+    preds: Csr,
     roots: Vec<FragmentId>,
     drains: Vec<FragmentId>,
 }
@@ -248,27 +254,46 @@ impl Mt {
                 c.len()
             ));
         }
-        let out_arcs =
-            Csr::from_pairs(nf, (0..na as u32).map(|a| (p.arc_creator[a as usize].0, a)));
+        // Sorted by (creator, destroyer), each pair once: what lets the creator column go
+        // (the builder and `OpenMt::close` write arcs in this order; a file that does not
+        // is corrupt).
+        if let Some(a) = (1..na).find(|&a| {
+            (p.arc_creator[a - 1], p.arc_destroyer[a - 1]) >= (p.arc_creator[a], p.arc_destroyer[a])
+        }) {
+            return Err(format!(
+                "arc {a} ({} -> {}) is not after arc {} ({} -> {}) in (creator, destroyer) order",
+                p.arc_creator[a],
+                p.arc_destroyer[a],
+                a - 1,
+                p.arc_creator[a - 1],
+                p.arc_destroyer[a - 1]
+            ));
+        }
+        let mut out_start = vec![0u32; nf + 1];
+        for c in &p.arc_creator {
+            out_start[c.idx() + 1] += 1;
+        }
+        for f in 0..nf {
+            out_start[f + 1] += out_start[f];
+        }
         let mut p = p;
         p.arc_start.shrink_to_fit();
-        p.arc_creator.shrink_to_fit();
         p.arc_destroyer.shrink_to_fit();
         p.tets.shrink_to_fit();
         p.positions.shrink_to_fit();
         p.kind.shrink_to_fit();
         p.error.shrink_to_fit();
-        let in_arcs = Csr::from_pairs(
+        let preds = Csr::from_pairs(
             nf,
-            (0..na as u32).map(|a| (p.arc_destroyer[a as usize].0, a)),
+            (0..na).map(|a| (p.arc_destroyer[a].0, p.arc_creator[a].0)),
         );
         for f in 0..nf {
             let e = p.error[f];
             match p.kind[f] {
-                FragmentKind::Root if !in_arcs.row(f).is_empty() => {
+                FragmentKind::Root if !preds.row(f).is_empty() => {
                     return Err(format!("root fragment {f} destroys tets"));
                 }
-                FragmentKind::Drain if !out_arcs.row(f).is_empty() => {
+                FragmentKind::Drain if out_start[f] != out_start[f + 1] => {
                     return Err(format!("drain fragment {f} creates tets"));
                 }
                 FragmentKind::Drain if e.is_nan() => {
@@ -280,8 +305,7 @@ impl Mt {
                 _ => {}
             }
         }
-        let level = levels(nf, &p.arc_creator, &in_arcs)
-            .ok_or_else(|| "the DAG has a cycle".to_string())?;
+        let level = levels(nf, &preds).ok_or_else(|| "the DAG has a cycle".to_string())?;
         let arc_box = |a: u32| {
             let a = a as usize;
             let mut b = Aabb::EMPTY;
@@ -295,10 +319,13 @@ impl Mt {
         let bbox: Vec<BoxF32> = (0..nf)
             .into_par_iter()
             .map(|f| {
-                let b = out_arcs
+                let f32 = f as u32;
+                let ins = preds
                     .row(f)
                     .into_iter()
-                    .chain(in_arcs.row(f))
+                    .filter_map(|c| arc_between(&out_start, &p.arc_destroyer, c, f32));
+                let b = (out_start[f]..out_start[f + 1])
+                    .chain(ins)
                     .fold(Aabb::EMPTY, |b, a| b.union(&arc_box(a)));
                 BoxF32::enclosing(&b)
             })
@@ -317,15 +344,14 @@ impl Mt {
             tets: p.tets,
             cell_data: p.cell_data,
             arc_start: p.arc_start,
-            arc_creator: p.arc_creator,
             arc_destroyer: p.arc_destroyer,
             kind: p.kind,
             error: p.error,
             info: p.info,
             level,
             bbox,
-            out_arcs,
-            in_arcs,
+            out_start,
+            preds,
             roots,
             drains,
         })
@@ -382,7 +408,26 @@ impl Mt {
     // ---- arcs ----
 
     pub fn nb_arcs(&self) -> usize {
-        self.arc_creator.len()
+        self.arc_destroyer.len()
+    }
+
+    /// Every arc as (arc, creator, destroyer), in arc order (by creator, then destroyer).
+    pub fn arcs(&self) -> impl Iterator<Item = (usize, FragmentId, FragmentId)> + '_ {
+        (0..self.nb_fragments()).flat_map(move |f| {
+            (self.out_start[f]..self.out_start[f + 1]).map(move |a| {
+                (
+                    a as usize,
+                    FragmentId::from_usize(f),
+                    self.arc_destroyer[a as usize],
+                )
+            })
+        })
+    }
+
+    /// The arc from `c` to `d`, if any (binary search among `c`'s out-arcs).
+    #[inline]
+    pub fn arc_between(&self, c: FragmentId, d: FragmentId) -> Option<usize> {
+        arc_between(&self.out_start, &self.arc_destroyer, c.0, d.0).map(|a| a as usize)
     }
 
     /// The pool tets of arc `a` (contiguous).
@@ -391,9 +436,10 @@ impl Mt {
         self.arc_start[a] as usize..self.arc_start[a + 1] as usize
     }
 
-    #[inline]
+    /// The creator of arc `a` (binary search over the creators' arc ranges; where the
+    /// creator is at hand, iterate [`Mt::out_arcs`] or [`Mt::arcs`] instead).
     pub fn arc_creator(&self, a: usize) -> FragmentId {
-        self.arc_creator[a]
+        FragmentId((self.out_start.partition_point(|&s| s <= a as u32) - 1) as u32)
     }
 
     #[inline]
@@ -408,7 +454,7 @@ impl Mt {
 
     /// The fragment that created tet `t`.
     pub fn tet_creator(&self, t: TetId) -> FragmentId {
-        self.arc_creator[self.tet_arc(t)]
+        self.arc_creator(self.tet_arc(t))
     }
 
     /// The fragment that destroys tet `t`.
@@ -449,13 +495,23 @@ impl Mt {
     /// Arcs leaving `f`: its ceiling, grouped by the fragment that destroys each part.
     #[inline]
     pub fn out_arcs(&self, f: FragmentId) -> ArcList<'_> {
-        self.out_arcs.row(f.idx())
+        ArcList::Range(self.out_start[f.idx()]..self.out_start[f.idx() + 1])
     }
 
-    /// Arcs entering `f`: its floor, grouped by the fragment that created each part.
+    /// The fragments `f` depends on: the creators of its in-arcs, one per arc, sorted.
     #[inline]
-    pub fn in_arcs(&self, f: FragmentId) -> ArcList<'_> {
-        self.in_arcs.row(f.idx())
+    pub fn predecessors(&self, f: FragmentId) -> ArcList<'_> {
+        self.preds.row(f.idx())
+    }
+
+    /// Arcs entering `f`: its floor, grouped by the fragment that created each part (in
+    /// the order of [`Mt::predecessors`]).
+    pub fn in_arcs(&self, f: FragmentId) -> impl Iterator<Item = u32> + '_ {
+        // Every predecessor has its arc: both lists come from the same arcs in `assemble`.
+        self.preds
+            .row(f.idx())
+            .into_iter()
+            .filter_map(move |c| arc_between(&self.out_start, &self.arc_destroyer, c, f.0))
     }
 
     /// The tets `f` creates (its ceiling), ghosts included.
@@ -468,7 +524,6 @@ impl Mt {
     /// The tets `f` destroys (its floor), ghosts included.
     pub fn destroyed_tets(&self, f: FragmentId) -> impl Iterator<Item = TetId> + '_ {
         self.in_arcs(f)
-            .into_iter()
             .flat_map(|a| self.arc_tets(a as usize).map(TetId::from_usize))
     }
 
@@ -523,15 +578,14 @@ impl Mt {
             + self.tets.capacity() * size_of::<Tet>()
             + attrs(&self.cell_data)
             + self.arc_start.capacity() * 4
-            + self.arc_creator.capacity() * 4
             + self.arc_destroyer.capacity() * 4
             + self.kind.capacity() * size_of::<FragmentKind>()
             + self.error.capacity() * 8
             + self.info.error_metric.capacity()
             + self.level.capacity() * 4
             + self.bbox.capacity() * size_of::<BoxF32>()
-            + self.out_arcs.heap_bytes()
-            + self.in_arcs.heap_bytes()
+            + self.out_start.capacity() * 4
+            + self.preds.heap_bytes()
             + (self.roots.capacity() + self.drains.capacity()) * 4
     }
 
@@ -627,20 +681,24 @@ fn step_down(y: f32) -> f32 {
     }
 }
 
+/// The arc from `c` to `d`: `c`'s out-arcs are a range sorted by destroyer.
+fn arc_between(out_start: &[u32], arc_destroyer: &[FragmentId], c: u32, d: u32) -> Option<u32> {
+    let (lo, hi) = (out_start[c as usize], out_start[c as usize + 1]);
+    arc_destroyer[lo as usize..hi as usize]
+        .binary_search_by_key(&d, |x| x.0)
+        .ok()
+        .map(|k| lo + k as u32)
+}
+
 /// Levels (longest path from a root) by Kahn's algorithm; `None` when the arcs have a cycle.
-fn levels(nf: usize, arc_creator: &[FragmentId], in_arcs: &Csr) -> Option<Vec<u32>> {
-    let mut pending: Vec<u32> = (0..nf).map(|f| in_arcs.row(f).len() as u32).collect();
+fn levels(nf: usize, preds: &Csr) -> Option<Vec<u32>> {
+    let mut pending: Vec<u32> = (0..nf).map(|f| preds.row(f).len() as u32).collect();
     let mut level = vec![0u32; nf];
-    // Successor lists are the out-arcs; build them here from the in-arcs to stay independent
-    // of the caller's CSR (this also serves `validate`).
+    // Successor lists, built here from the predecessors to stay independent of the
+    // caller's out-arcs (this also serves `validate`).
     let out = Csr::from_pairs(
         nf,
-        (0..nf as u32).flat_map(|f| {
-            in_arcs
-                .row(f as usize)
-                .into_iter()
-                .map(move |a| (arc_creator[a as usize].0, f))
-        }),
+        (0..nf as u32).flat_map(|f| preds.row(f as usize).into_iter().map(move |c| (c, f))),
     );
     let mut ready: Vec<u32> = (0..nf as u32)
         .filter(|&f| pending[f as usize] == 0)

@@ -150,6 +150,10 @@ impl Mt {
             && self.arc_start.first() == Some(&0)
             && self.arc_start.last().map(|&s| s as usize) == Some(self.nb_tets())
             && self.arc_start.windows(2).all(|w| w[0] <= w[1])
+            && self.out_start.len() == nf + 1
+            && self.out_start.first() == Some(&0)
+            && self.out_start.last().map(|&s| s as usize) == Some(na)
+            && self.out_start.windows(2).all(|w| w[0] <= w[1])
             && self.error.len() == nf
             && self.level.len() == nf
             && self.bbox.len() == nf
@@ -161,14 +165,35 @@ impl Mt {
             });
             return r;
         }
-        for a in 0..na {
-            let (c, d) = (self.arc_creator[a], self.arc_destroyer[a]);
-            if c.idx() >= nf || d.idx() >= nf || c == d {
-                r.add(MtViolationKind::Structure, || format!("arc {a}: {c} → {d}"));
+        let mut prev: Option<(FragmentId, FragmentId)> = None;
+        for (a, c, d) in self.arcs() {
+            if d.idx() >= nf || c == d || prev.is_some_and(|p| p >= (c, d)) {
+                r.add(MtViolationKind::Structure, || {
+                    format!("arc {a}: {c} → {d}, after {prev:?} in (creator, destroyer) order")
+                });
             }
             if self.arc_tets(a).is_empty() {
                 r.add(MtViolationKind::EmptyArc, || format!("arc {a}: {c} → {d}"));
             }
+            prev = Some((c, d));
+        }
+        // The predecessor lists are the arcs seen from their destroyers.
+        let mut preds = 0;
+        for f in 0..nf {
+            let fid = FragmentId::from_usize(f);
+            for c in self.predecessors(fid) {
+                preds += 1;
+                if c as usize >= nf || self.arc_between(FragmentId(c), fid).is_none() {
+                    r.add(MtViolationKind::Structure, || {
+                        format!("fragment {f} lists predecessor {c} without an arc from it")
+                    });
+                }
+            }
+        }
+        if preds != na {
+            r.add(MtViolationKind::Structure, || {
+                format!("{preds} predecessors listed for {na} arcs")
+            });
         }
         for (t, tet) in self.tets.iter().enumerate() {
             let in_range = tet
@@ -203,7 +228,7 @@ impl Mt {
         }
         for f in 0..nf {
             let fid = FragmentId::from_usize(f);
-            let (floor, ceiling) = (self.in_arcs(fid).len(), self.out_arcs(fid).len());
+            let (floor, ceiling) = (self.predecessors(fid).len(), self.out_arcs(fid).len());
             let bad = match self.kind[f] {
                 FragmentKind::Root => floor > 0 || ceiling == 0,
                 FragmentKind::Drain => ceiling > 0 || floor == 0,
@@ -218,7 +243,7 @@ impl Mt {
                 });
             }
         }
-        match super::levels(nf, &self.arc_creator, &self.in_arcs) {
+        match super::levels(nf, &self.preds) {
             None => r.add(MtViolationKind::Cycle, || "the DAG has a cycle".into()),
             Some(levels) => {
                 for f in (0..nf).filter(|&f| levels[f] != self.level[f]) {
@@ -242,8 +267,7 @@ impl Mt {
                 });
             }
         }
-        for a in 0..na {
-            let (c, d) = (self.arc_creator[a], self.arc_destroyer[a]);
+        for (_, c, d) in self.arcs() {
             if self.error[c.idx()] > self.error[d.idx()] {
                 r.add(MtViolationKind::ErrorNotMonotone, || {
                     format!(
