@@ -101,13 +101,22 @@ fn damaged_files_are_refused_with_the_reason() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Offset in the payload of the tet array: after the info block and the counts.
-fn tets_offset(bytes: &[u8]) -> usize {
+/// Offset in the payload of the counts (vertices, tets, arcs, fragments): after the info
+/// block.
+fn counts_offset(bytes: &[u8]) -> usize {
     let name_len = u32::from_le_bytes(bytes[HEADER..HEADER + 4].try_into().unwrap()) as usize;
-    let info = 4 + name_len + 8 + 1 + 8 + 8;
-    let counts_at = HEADER + info;
-    let nv = u64::from_le_bytes(bytes[counts_at..counts_at + 8].try_into().unwrap()) as usize;
-    counts_at + 32 + nv * 24
+    HEADER + 4 + name_len + 8 + 1 + 8 + 8
+}
+
+fn count(bytes: &[u8], k: usize) -> usize {
+    let at = counts_offset(bytes) + 8 * k;
+    u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize
+}
+
+/// Offset in the payload of the tet array: after the info block, the counts and the
+/// positions.
+fn tets_offset(bytes: &[u8]) -> usize {
+    counts_offset(bytes) + 32 + count(bytes, 0) * 24
 }
 
 #[test]
@@ -123,6 +132,24 @@ fn well_sealed_but_inconsistent_files_are_refused_or_caught() {
     let e = Mt::from_bytes(&out_of_range).unwrap_err();
     assert!(matches!(e, MtFileErrorKind::Corrupt(_)), "{e}");
     assert!(e.to_string().contains("tet 0"), "{e}");
+
+    // Arcs out of (creator, destroyer) order (the store derives each arc's creator from
+    // that order): refused, naming the arc.
+    let (nt, na) = (count(&good, 1), count(&good, 2));
+    let creators = at + nt * 16 + (na + 1) * 4;
+    let mut unordered = good.clone();
+    let last = creators + (na - 1) * 4;
+    let (first, end): ([u8; 4], [u8; 4]) = (
+        unordered[creators..creators + 4].try_into().unwrap(),
+        unordered[last..last + 4].try_into().unwrap(),
+    );
+    assert_ne!(first, end);
+    unordered[creators..creators + 4].copy_from_slice(&end);
+    unordered[last..last + 4].copy_from_slice(&first);
+    reseal(&mut unordered);
+    let e = Mt::from_bytes(&unordered).unwrap_err();
+    assert!(matches!(e, MtFileErrorKind::Corrupt(_)), "{e}");
+    assert!(e.to_string().contains("(creator, destroyer) order"), "{e}");
 
     // Two corners of a tet swapped: structurally fine, geometrically inverted, and the
     // fragments around it no longer fit: `validate` says so.
