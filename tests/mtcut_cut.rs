@@ -302,7 +302,6 @@ fn a_blade_swept_across_the_mt_stays_valid() {
 /// Three cuts straight through fandisk: the MT should hold one independent component per
 /// piece the cuts leave (the same at the finest and the coarsest level).
 #[test]
-#[ignore = "KNOWN FAILURE (issue 6 open): after the second cut, 3 MTs for 4 pieces (6 for 8 after the third); see MtCutter's limits"]
 fn mt_components_follow_the_pieces() {
     use mtcut::geom::{Aabb, DVec3};
     let mt = mt_common::built("fandisk").1.clone();

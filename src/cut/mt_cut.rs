@@ -51,7 +51,11 @@
 //!    floor and ceiling of each fragment involved (tets, ghosts included) are split into
 //!    local parts, joined through shared vertices (and a part found on one level only —
 //!    a piece cut free inside the fragment — joined with the parts of the other level
-//!    occupying the same space). Parts are then grouped by *body*: the parts and the
+//!    occupying the same space, never across the crack). A fragment is involved when the
+//!    cut changed one of its tets, or when it has tets wholly on each side of C's plane:
+//!    after an earlier cut a fragment can hold pieces of one body connected only through
+//!    tets that went to another fragment, and a later plane can pass between them without
+//!    cutting any of its tets. Parts are then grouped by *body*: the parts and the
 //!    untouched fragments joined through the tets between them (the arcs). A fragment
 //!    whose parts lie in `k` bodies becomes `k` fragments (the first keeps its id, the
 //!    others are appended with its kind and error), each creating and destroying the tets
@@ -100,13 +104,6 @@
 //!   off the plane) are snapped onto the new cut and duplicated, and a child lying flat in
 //!   the plane between the lips takes one side (tests/mtcut_cut.rs,
 //!   `a_blade_swept_across_the_mt_stays_valid`, ignored). The finest level stays valid.
-//! * After several cuts straight through, pieces the later cuts separate can stay in one
-//!   independent MT (measured: fandisk cut by the planes x = 25 %, y = 65 %, z = 65 % of its
-//!   box gives 8 pieces at every level but 6 MTs; `mt_components_follow_the_pieces`,
-//!   ignored): grouping the parts by body joins some parts on opposite sides of the new
-//!   cut, not yet found why. Every MT stays valid, and its extractions are valid meshes
-//!   (two pieces then come in one mesh). The paper's split by local part gives 8, but
-//!   extracts the lips of a crack ending inside the body at different resolutions.
 //! * A crack follows C up to a tet's size near C's contour (the tips, as on a plain
 //!   mesh): a later cut can cross an earlier polygon in that band.
 
@@ -378,23 +375,39 @@ impl MtCutter {
         };
         let mut cand: Vec<TetId> = Vec::new();
         let mut states: Vec<[u8; 4]> = Vec::new();
+        // Per fragment, whether its floor or ceiling has a tet wholly on the positive (bit
+        // 0) or the negative (bit 1) side of C's plane. A fragment with both may be cut
+        // apart without any of its tets being cut: after an earlier cut it can hold
+        // pieces connected only through tets that went to another fragment (parts of one
+        // body stay one fragment), and a later plane can pass between them.
+        let mut sides_seen = vec![0u8; mt.nb_fragments()];
         for f in 0..mt.nb_fragments() {
             let f = FragmentId::from_usize(f);
             if mt.fragment_kind(f) == FragmentKind::Drain || !box_meets(&mt.fragment_bbox(f)) {
                 continue;
             }
-            for t in mt.created_tets(f) {
-                let tet = mt.tet(t);
-                if tet[3] == GHOST {
-                    continue;
-                }
-                stats.tets_tested += 1;
-                let s = classifier.tet(positions, &self.scales, &tet);
-                if is_candidate(s)
-                    && box_meets(&Aabb::from_points(&tet.map(|v| positions[v.idx()])))
-                {
-                    cand.push(t);
-                    states.push(s);
+            for a in mt.out_arcs(f) {
+                let d = mt.arc_destroyer(a as usize);
+                for t in mt.arc_tets(a as usize).map(TetId::from_usize) {
+                    let tet = mt.tet(t);
+                    if tet[3] == GHOST {
+                        continue;
+                    }
+                    stats.tets_tested += 1;
+                    let s = classifier.tet(positions, &self.scales, &tet);
+                    let side = match s.map(|x| 1u8 << x).iter().fold(0, |m, b| m | b) {
+                        x if x == 1 << POS => 1,
+                        x if x == 1 << NEG => 2,
+                        _ => 0,
+                    };
+                    sides_seen[f.idx()] |= side;
+                    sides_seen[d.idx()] |= side;
+                    if is_candidate(s)
+                        && box_meets(&Aabb::from_points(&tet.map(|v| positions[v.idx()])))
+                    {
+                        cand.push(t);
+                        states.push(s);
+                    }
                 }
             }
         }
@@ -681,6 +694,9 @@ impl MtCutter {
         // take copies. `touched` lists every real tet the cut changed or may have made a
         // crack face of.
         let mut touched: Vec<u32> = Vec::new();
+        // The side of every tet the cut changed (step 3 keeps parts of opposite sides
+        // apart when it pairs the levels of a fragment).
+        let mut side_of: HashMap<u32, Side> = HashMap::new();
         let mut appended_parents: Vec<u32> = Vec::new();
         for (k, &parent) in cand.iter().enumerate() {
             match child_of[k] {
@@ -689,15 +705,18 @@ impl MtCutter {
                         let side = unsplit_side(k);
                         open.tets[parent.idx()] = for_side(tets[k], side);
                         touched.push(parent.0);
+                        side_of.insert(parent.0, side);
                     }
                 }
                 i => {
                     let ch = &children[i as usize];
                     open.tets[parent.idx()] = for_side(ch.tets[0], ch.sides[0]);
                     touched.push(parent.0);
+                    side_of.insert(parent.0, ch.sides[0]);
                     let (c, d) = (open.creator[parent.idx()], open.destroyer[parent.idx()]);
                     for j in 1..ch.len {
                         touched.push(open.tets.len() as u32);
+                        side_of.insert(open.tets.len() as u32, ch.sides[j]);
                         open.tets.push(for_side(ch.tets[j], ch.sides[j]));
                         open.creator.push(c);
                         open.destroyer.push(d);
@@ -722,8 +741,10 @@ impl MtCutter {
                 let (c, d) = (open.creator[g], open.destroyer[g]);
                 open.tets[g] = for_side(subs[0].0, subs[0].1);
                 ghost_touched.push(g as u32);
+                side_of.insert(g as u32, subs[0].1);
                 for &(t, side) in &subs[1..] {
                     ghost_touched.push(open.tets.len() as u32);
+                    side_of.insert(open.tets.len() as u32, side);
                     open.tets.push(for_side(t, side));
                     open.creator.push(c);
                     open.destroyer.push(d);
@@ -733,6 +754,7 @@ impl MtCutter {
                 let side = face_side.get(&key).copied().unwrap_or(Side::Positive);
                 open.tets[g] = for_side(tet, side);
                 ghost_touched.push(g as u32);
+                side_of.insert(g as u32, side);
             }
         }
         open.cell_data.push_copies(&appended_parents);
@@ -773,7 +795,11 @@ impl MtCutter {
                 if all_cut(&tet, lf) && !matched {
                     let g = [tet[lf[0]], tet[lf[1]], tet[lf[2]], GHOST];
                     crack.push((g, open.creator[t as usize], open.destroyer[t as usize]));
-                    ghost_touched.push((n_pool + appended_parents.len() + crack.len() - 1) as u32);
+                    let id = (n_pool + appended_parents.len() + crack.len() - 1) as u32;
+                    ghost_touched.push(id);
+                    if let Some(&side) = side_of.get(&t) {
+                        side_of.insert(id, side);
+                    }
                 }
             }
         }
@@ -789,7 +815,7 @@ impl MtCutter {
         // Step 3: split every involved fragment by the components of its floor and ceiling.
         let t_dag = Instant::now();
         let nf = open.kind.len();
-        let mut involved = vec![false; nf];
+        let mut involved: Vec<bool> = sides_seen.iter().map(|&s| s == 3).collect();
         for &t in touched.iter().chain(&ghost_touched) {
             involved[open.creator[t as usize].idx()] = true;
             involved[open.destroyer[t as usize].idx()] = true;
@@ -834,7 +860,13 @@ impl MtCutter {
         let mut first_part: Vec<u32> = Vec::with_capacity(order.len() + 1);
         let mut next = nf as u32;
         for i in 0..order.len() {
-            let p = split_fragment(&open.tets, &open.positions, &floor[i], &ceiling[i]);
+            let p = split_fragment(
+                &open.tets,
+                &open.positions,
+                &side_of,
+                &floor[i],
+                &ceiling[i],
+            );
             first_part.push(next);
             next += p.iter().map(|&x| x + 1).max().unwrap_or(1);
             parts.push(p);
@@ -991,7 +1023,13 @@ fn side_of_states(tet: &Tet, states: [u8; 4], positions: &[DVec3], polygon: &Cut
 /// centroid of one of its own (exact point-in-tet tests).
 ///
 /// Returns the part of each floor tet then each ceiling tet, numbered by first appearance.
-fn split_fragment(tets: &[Tet], positions: &[DVec3], floor: &[u32], ceiling: &[u32]) -> Vec<u32> {
+fn split_fragment(
+    tets: &[Tet],
+    positions: &[DVec3],
+    side_of: &HashMap<u32, Side>,
+    floor: &[u32],
+    ceiling: &[u32],
+) -> Vec<u32> {
     let n = floor.len() + ceiling.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
     let mut first: HashMap<VertexId, u32> = HashMap::new();
@@ -1037,6 +1075,19 @@ fn split_fragment(tets: &[Tet], positions: &[DVec3], floor: &[u32], ceiling: &[u
                 ((c[0] + c[1] + c[2] + c[3]) * 0.25, Aabb::from_points(&c))
             })
             .collect();
+        // Two tets the cut put on opposite sides never pair: near the crack the levels'
+        // cut surfaces differ (snapping bends each its own way), so a tet of one level can
+        // hold the centroid of one across the crack on the other.
+        let side = |i: u32| {
+            side_of
+                .get(&all[i as usize])
+                .copied()
+                .filter(|s| *s != Side::Straddle)
+        };
+        let compatible = |i: u32, j: u32| match (side(i), side(j)) {
+            (Some(a), Some(b)) => a == b,
+            _ => true,
+        };
         let holds = |i: u32, p: DVec3| {
             if !shape[i as usize].1.contains(p) {
                 return false;
@@ -1050,7 +1101,7 @@ fn split_fragment(tets: &[Tet], positions: &[DVec3], floor: &[u32], ceiling: &[u
         };
         for &i in &orphans {
             let others = if i < nfl { nfl..n as u32 } else { 0..nfl };
-            for j in others.filter(|&j| real(j)) {
+            for j in others.filter(|&j| real(j) && compatible(i, j)) {
                 if holds(j, shape[i as usize].0) || holds(i, shape[j as usize].0) {
                     union(&mut parent, i, j);
                 }
@@ -1074,10 +1125,15 @@ fn split_fragment(tets: &[Tet], positions: &[DVec3], floor: &[u32], ceiling: &[u
             }
             let centroid = shape[i as usize].0;
             let others = if i < nfl { nfl..n as u32 } else { 0..nfl };
-            let nearest = others
-                .filter(|&j| real(j))
-                .map(|j| (centroid.distance_squared(shape[j as usize].0), j))
-                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            // The nearest on the same side; any, if the other level has none there.
+            let nearest = |same_side: bool| {
+                others
+                    .clone()
+                    .filter(|&j| real(j) && (!same_side || compatible(i, j)))
+                    .map(|j| (centroid.distance_squared(shape[j as usize].0), j))
+                    .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+            };
+            let nearest = nearest(true).or_else(|| nearest(false));
             if let Some((_, j)) = nearest {
                 union(&mut parent, i, j);
                 let r = find(&mut parent, i) as usize;
