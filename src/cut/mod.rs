@@ -77,6 +77,8 @@
 //! snapped boundary vertex whose groups on some level are not one disk per side is
 //! unsnapped, for all levels, before ids are allocated (run [`unglue::plan_copies`] on each
 //! level's star). The 1:17 scheme is not meant for the MT.
+//!
+//! [`roi`] makes region-of-interest sub-MTs with the MT cut (paper §7).
 
 pub mod bielser;
 pub mod bvh;
@@ -86,6 +88,7 @@ pub mod cutter;
 pub mod mt_cut;
 pub mod options;
 pub mod report;
+pub mod roi;
 pub mod split;
 pub mod table_gen;
 pub mod tables;
@@ -97,6 +100,7 @@ pub use cutter::{CUT_COLUMN, Cutter, cut_mesh, vertex_scales};
 pub use mt_cut::{MtCutStats, MtCutTimes, MtCutter};
 pub use options::{CutError, CutOptions, MIN_FACE_POINT_MARGIN, MIN_SNAP, Scheme};
 pub use report::{CutResult, CutStats, CutTimes, SplitRecord};
+pub use roi::{RoiError, RoiRegion, RoiStats, region_of_interest};
 pub use tables::{CutCase, Side};
 
 #[cfg(doc)]

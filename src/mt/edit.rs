@@ -105,6 +105,27 @@ impl Mt {
         Some(self.restrict(&keep_f, &keep_t))
     }
 
+    /// Components `ks` (see [`fragment_components`](Self::fragment_components); indices
+    /// out of range are ignored) as one MT: their fragments, tets and vertices, in their
+    /// order here.
+    pub fn select_components(&self, ks: &[usize]) -> Mt {
+        let (n, label) = self.fragment_components();
+        let mut wanted = vec![false; n];
+        for &k in ks.iter().filter(|&&k| k < n) {
+            wanted[k] = true;
+        }
+        let keep_f: Vec<usize> = (0..self.nb_fragments())
+            .filter(|&f| wanted[label[f] as usize])
+            .collect();
+        let mut keep_t: Vec<usize> = self
+            .arcs()
+            .filter(|&(_, c, _)| wanted[label[c.idx()] as usize])
+            .flat_map(|(a, _, _)| self.arc_tets(a))
+            .collect();
+        keep_t.sort_unstable();
+        self.restrict(&keep_f, &keep_t)
+    }
+
     /// The MTs of every component, in component order.
     pub fn components(&self) -> Vec<Mt> {
         let (n, _) = self.fragment_components();

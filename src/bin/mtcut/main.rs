@@ -9,6 +9,7 @@ mod demo;
 mod extract;
 mod info;
 mod parse;
+mod roi;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -35,6 +36,9 @@ enum Command {
     /// Cut a mesh, or every level of an .mt model, with planar convex polygons, applied in
     /// order.
     Cut(cut::Args),
+    /// Restrict an .mt model to a box or a sphere (everything outside omitted), as a model
+    /// of its own.
+    Roi(roi::Args),
     /// Run the main job on the embedded liver model and write the results to a folder.
     Demo(demo::Args),
 }
@@ -51,6 +55,7 @@ fn main() -> ExitCode {
         Command::Build(a) => build::run(a),
         Command::Extract(a) => extract::run(a),
         Command::Cut(a) => cut::run(a),
+        Command::Roi(a) => roi::run(a),
         Command::Demo(a) => demo::run(a),
     };
     match result {

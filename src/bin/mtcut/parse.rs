@@ -95,6 +95,27 @@ pub fn sphere(text: &str) -> Result<Sphere, String> {
     Ok(Sphere { center, radius })
 }
 
+/// A box `x0,y0,z0,x1,y1,z1`: six numbers, the min and max corners (whether it is
+/// finite and not empty is judged by the caller, which names the box).
+pub fn aabb(text: &str) -> Result<mtcut::geom::Aabb, String> {
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != 6 {
+        return Err(format!(
+            "'{}' has {} number(s), expected 6 as x0,y0,z0,x1,y1,z1 (min and max corners)",
+            text.trim(),
+            parts.len()
+        ));
+    }
+    let v = parts
+        .iter()
+        .map(|p| number(p))
+        .collect::<Result<Vec<f64>, String>>()?;
+    Ok(mtcut::geom::Aabb {
+        min: DVec3::new(v[0], v[1], v[2]),
+        max: DVec3::new(v[3], v[4], v[5]),
+    })
+}
+
 /// A polygon `x,y,z;x,y,z;...`: its corners, in order. Errors name the 0-based point.
 pub fn corners(text: &str) -> Result<Vec<DVec3>, String> {
     let mut out = Vec::new();
