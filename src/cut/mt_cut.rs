@@ -815,7 +815,9 @@ impl MtCutter {
         // Step 3: split every involved fragment by the components of its floor and ceiling.
         let t_dag = Instant::now();
         let nf = open.kind.len();
-        let mut involved: Vec<bool> = sides_seen.iter().map(|&s| s == 3).collect();
+        // (A cut that changed no tet separates nothing: then no fragment is involved.)
+        let changed_any = !touched.is_empty() || !ghost_touched.is_empty();
+        let mut involved: Vec<bool> = sides_seen.iter().map(|&s| changed_any && s == 3).collect();
         for &t in touched.iter().chain(&ghost_touched) {
             involved[open.creator[t as usize].idx()] = true;
             involved[open.destroyer[t as usize].idx()] = true;
