@@ -308,3 +308,29 @@ fn demo_builds_extracts_cuts_and_lists_its_outputs() {
     assert_eq!(j["components"], 2);
     assert!(dir.join("liver-quality.json").exists());
 }
+
+/// A reader that stops early (`mtcut info MESH | head -1`) closes the pipe: mtcut stops
+/// quietly, without a panic message.
+#[test]
+fn a_closed_output_pipe_is_no_panic() {
+    use std::process::{Command, Stdio};
+    let (fandisk, liver) = (data("fandisk.node"), data("liver.node"));
+    for args in [
+        vec!["info", fandisk.to_str().unwrap()],
+        vec!["info", liver.to_str().unwrap(), "--json"],
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_mtcut"))
+            .args(&args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("mtcut runs");
+        // Close the read end before mtcut (still reading the mesh) writes anything.
+        drop(child.stdout.take());
+        let o = child.wait_with_output().expect("mtcut ends");
+        let err = stderr(&o);
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(o.status.code().is_some(), "{args:?}: killed by a signal");
+        assert!(o.status.success(), "{args:?}: {:?} {err}", o.status);
+    }
+}

@@ -127,9 +127,9 @@ pub fn run(args: Args) -> CliResult {
             o.insert("read_seconds".into(), json!(read_seconds));
             o.insert("save_seconds".into(), json!(save_seconds));
         }
-        println!("{j}");
+        out!("{j}");
     } else {
-        print_text(&args, &mt, &stats, bytes, read_seconds, save_seconds);
+        print_text(&args, &mt, &stats, bytes, read_seconds, save_seconds)?;
     }
     Ok(())
 }
@@ -141,39 +141,47 @@ fn print_text(
     bytes: u64,
     read_seconds: f64,
     save_seconds: f64,
-) {
-    println!(
+) -> crate::CliResult {
+    out!(
         "built      {} from {} ({} error)",
         args.output.display(),
         args.mesh.display(),
         mt.info().error_metric
     );
-    println!(
+    out!(
         "input      {} tets, {} vertices",
-        s.input_tets, s.input_vertices
+        s.input_tets,
+        s.input_vertices
     );
-    println!(
+    out!(
         "fragments  {} ({} collapses in {} rounds, plus root and drain)",
-        s.fragments, s.collapses, s.rounds
+        s.fragments,
+        s.collapses,
+        s.rounds
     );
-    println!(
+    out!(
         "MT tets    {} over all levels (plus {} ghost tets), {} arcs",
-        s.pool_tets, s.ghost_tets, s.arcs
+        s.pool_tets,
+        s.ghost_tets,
+        s.arcs
     );
-    println!("DAG depth  {}", s.dag_depth);
-    println!(
+    out!("DAG depth  {}", s.dag_depth);
+    out!(
         "coarsest   {} tets, {} vertices ({:.1}% of the input tets)",
         s.coarsest_tets,
         s.coarsest_vertices,
         100.0 * s.coarsest_tets as f64 / s.input_tets.max(1) as f64
     );
-    println!(
+    out!(
         "size       {:.1} bytes per input tet in memory, {} bytes on disk",
         s.heap_bytes as f64 / s.input_tets.max(1) as f64,
         bytes
     );
-    println!(
+    out!(
         "time       build {:.3} s (read {:.3} s, save {:.3} s)",
-        s.seconds, read_seconds, save_seconds
+        s.seconds,
+        read_seconds,
+        save_seconds
     );
+    Ok(())
 }

@@ -210,22 +210,26 @@ pub fn run(args: Args) -> CliResult {
                 "write": write_seconds,
             },
         });
-        println!("{j}");
+        out!("{j}");
         return Ok(());
     }
-    println!(
+    out!(
         "cut        {} with {} polygon(s), {} scheme",
         args.mesh.display(),
         polys.len(),
         options.scheme.name()
     );
     for (i, s) in stats.iter().enumerate() {
-        println!(
+        out!(
             "polygon {i}  {} tets cut ({} tested), {} created, {} vertices added, {:.4} s",
-            s.tets_cut, s.tets_tested, s.tets_created, s.vertices_added, s.time.cut
+            s.tets_cut,
+            s.tets_tested,
+            s.tets_created,
+            s.vertices_added,
+            s.time.cut
         );
     }
-    println!(
+    out!(
         "result     {} tets, {} vertices; volume {} (before {})",
         mesh.nb_tets(),
         mesh.nb_vertices(),
@@ -244,20 +248,20 @@ pub fn run(args: Args) -> CliResult {
     if parts.components.count > SHOWN {
         sizes.push(format!("{} more", parts.components.count - SHOWN));
     }
-    println!(
+    out!(
         "components {}: {}",
         parts.components.count,
         sizes.join(", ")
     );
     if !problems.is_empty() {
-        println!(
+        out!(
             "valid      no, as expected of the 1:17 scheme ({})",
             problems.join("; ")
         );
     }
     let names: Vec<String> = outputs.iter().map(|p| p.display().to_string()).collect();
-    println!("wrote      {}", names.join(", "));
-    println!(
+    out!("wrote      {}", names.join(", "));
+    out!(
         "time       cut {cut_seconds:.4} s (read {read_seconds:.3} s, prepare {prepare_seconds:.3} s, write {write_seconds:.3} s)"
     );
     Ok(())

@@ -117,16 +117,16 @@ pub fn run(args: Args) -> CliResult {
                 "write": write_seconds,
             },
         });
-        println!("{j}");
+        out!("{j}");
         return Ok(());
     }
-    println!(
+    out!(
         "cut        model {} with {} polygon(s), every level",
         args.mesh.display(),
         polys.len()
     );
     for (i, s) in stats.iter().enumerate() {
-        println!(
+        out!(
             "polygon {i}  {} fragments involved ({} split), {} tets cut, {} created, {} \
              vertices added; {} component(s); {:.4} s (split {:.4} s, DAG {:.4} s)",
             s.fragments_involved,
@@ -140,7 +140,7 @@ pub fn run(args: Args) -> CliResult {
             s.time.dag
         );
     }
-    println!(
+    out!(
         "result     {} fragments, {} vertices, {} component(s) (before {}); valid after \
          every cut",
         mt.nb_fragments(),
@@ -148,8 +148,8 @@ pub fn run(args: Args) -> CliResult {
         components,
         components_before
     );
-    println!("wrote      {}", args.output.display());
-    println!(
+    out!("wrote      {}", args.output.display());
+    out!(
         "time       cut {cut_seconds:.4} s (load {load_seconds:.3} s, validate \
          {validate_seconds:.3} s, write {write_seconds:.3} s)"
     );

@@ -75,8 +75,8 @@ pub fn run(args: Args) -> CliResult {
     let dir = &args.output;
     let (mesh, report) = liver()?;
     let info = MeshInfo::of(&mesh, report);
-    println!("embedded model: liver");
-    info.print_text();
+    out!("embedded model: liver");
+    info.print_text()?;
 
     // The Multi-Tessellation.
     let bar = progress_bar(false);
@@ -160,15 +160,21 @@ pub fn run(args: Args) -> CliResult {
     let pvd = dir.join("demo.pvd");
     write_pvd(&pvd, &entries)?;
 
-    println!(
+    out!(
         "MT         {} fragments, DAG depth {}, {} tets over all levels; built in {:.2} s",
-        build.fragments, build.dag_depth, build.pool_tets, build.seconds
+        build.fragments,
+        build.dag_depth,
+        build.pool_tets,
+        build.seconds
     );
-    println!(
+    out!(
         "levels     finest {} tets, middle {} tets (error ≤ {:.3e}), coarsest {} tets",
-        finest.stats.tets, middle.stats.tets, middle.stats.max_error, coarsest.stats.tets
+        finest.stats.tets,
+        middle.stats.tets,
+        middle.stats.max_error,
+        coarsest.stats.tets
     );
-    println!(
+    out!(
         "cut        the MT, plane z = {:.3}: {} fragments involved ({} split), {} tets cut over \
          all levels, {} created; {} parts; valid; {:.3} s (validate {:.3} s)",
         polygon.points()[0].z,
@@ -189,7 +195,7 @@ pub fn run(args: Args) -> CliResult {
     };
     let volume =
         |f: fn(&Part) -> &Extraction| parts.iter().map(|p| f(p).mesh.volume()).sum::<f64>();
-    println!(
+    out!(
         "parts      finest {} tets, volume {} (uncut {}); coarsest {} tets, volume {} (uncut {})",
         sizes(|p| &p.finest),
         volume(|p| &p.finest),
@@ -198,7 +204,7 @@ pub fn run(args: Args) -> CliResult {
         volume(|p| &p.coarsest),
         coarsest.mesh.volume()
     );
-    println!(
+    out!(
         "wrote      {} (open it in ParaView: time steps 0-2 are the levels, 3 and 4 the cut \
          parts at their finest and coarsest), {}, {}, {} and {} .vtu files",
         pvd.display(),
@@ -207,6 +213,6 @@ pub fn run(args: Args) -> CliResult {
         quality.display(),
         entries.len()
     );
-    println!("time       {:.2} s in all", start.elapsed().as_secs_f64());
+    out!("time       {:.2} s in all", start.elapsed().as_secs_f64());
     Ok(())
 }

@@ -208,9 +208,9 @@ pub fn run(args: Args) -> CliResult {
             o.insert("write_seconds".into(), json!(write_seconds));
             o.insert("check_seconds".into(), json!(check_seconds));
         }
-        println!("{j}");
+        out!("{j}");
     } else {
-        print_text(&args, &mt, &e, volume, load_seconds, write_seconds);
+        print_text(&args, &mt, &e, volume, load_seconds, write_seconds)?;
     }
     Ok(())
 }
@@ -222,21 +222,21 @@ fn print_text(
     volume: f64,
     load_seconds: f64,
     write_seconds: f64,
-) {
+) -> crate::CliResult {
     let s = &e.stats;
     match args.component {
-        Some(k) => println!(
+        Some(k) => out!(
             "extracted  {} from component {k} of {}",
             args.output.display(),
             args.model.display()
         ),
-        None => println!(
+        None => out!(
             "extracted  {} from {}",
             args.output.display(),
             args.model.display()
         ),
     }
-    println!(
+    out!(
         "mesh       {} tets ({:.1}% of the finest {}), {} vertices, volume {}",
         s.tets,
         100.0 * s.tets as f64 / mt.info().input_tets.max(1) as f64,
@@ -244,15 +244,17 @@ fn print_text(
         s.vertices,
         volume
     );
-    println!(
+    out!(
         "error      up to {:e}; {} fragment(s) not applied",
-        s.max_error, s.refined_fragments
+        s.max_error,
+        s.refined_fragments
     );
-    println!(
-        "data       cells: {CELL_FRAGMENT}, {CELL_ERROR}, {CELL_LEVEL}; points: {POINT_VERTEX}"
-    );
-    println!(
+    out!("data       cells: {CELL_FRAGMENT}, {CELL_ERROR}, {CELL_LEVEL}; points: {POINT_VERTEX}");
+    out!(
         "time       extract {:.4} s (load {:.3} s, write {:.3} s)",
-        s.seconds, load_seconds, write_seconds
+        s.seconds,
+        load_seconds,
+        write_seconds
     );
+    Ok(())
 }

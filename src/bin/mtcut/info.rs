@@ -83,28 +83,36 @@ impl MeshInfo {
         })
     }
 
-    pub fn print_text(&self) {
+    pub fn print_text(&self) -> crate::CliResult {
         let q = &self.quality;
         let (lo, hi) = (self.bbox.min, self.bbox.max);
-        println!(
+        out!(
             "vertices   {} ({} unused)",
-            self.vertices, self.report.unused_vertices
+            self.vertices,
+            self.report.unused_vertices
         );
-        println!(
+        out!(
             "tets       {} ({} re-oriented on reading)",
-            self.tets, self.report.reoriented_tets
+            self.tets,
+            self.report.reoriented_tets
         );
-        println!(
+        out!(
             "bbox       [{}, {}, {}] .. [{}, {}, {}]",
-            lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
+            lo.x,
+            lo.y,
+            lo.z,
+            hi.x,
+            hi.y,
+            hi.z
         );
-        println!("volume     {}", self.volume);
-        println!(
+        out!("volume     {}", self.volume);
+        out!(
             "boundary   {} faces, area {}",
-            self.boundary_faces, self.boundary_area
+            self.boundary_faces,
+            self.boundary_area
         );
-        println!("components {}", self.components);
-        println!(
+        out!("components {}", self.components);
+        out!(
             "quality    dihedral {:.2}°..{:.2}°, {} tets below 5°; aspect ratio mean {:.3}, max {:.3}; volume {:e}..{:e}",
             q.min_dihedral_deg,
             q.max_dihedral_deg,
@@ -115,16 +123,17 @@ impl MeshInfo {
             q.max_volume
         );
         if self.problems.is_empty() {
-            println!("valid      yes");
+            out!("valid      yes");
         } else {
-            println!("valid      NO");
+            out!("valid      NO");
             for p in &self.problems {
-                println!("  problem: {p}");
+                out!("  problem: {p}");
             }
         }
         for w in &self.warnings {
-            println!("  warning: {w}");
+            out!("  warning: {w}");
         }
+        Ok(())
     }
 }
 
@@ -170,31 +179,37 @@ impl ModelInfo {
         j
     }
 
-    fn print_text(&self) {
+    fn print_text(&self) -> crate::CliResult {
         let s = &self.summary;
         let i = &s.info;
         let (lo, hi) = (s.bbox.min, s.bbox.max);
-        println!("format     mtcut model, file version {MT_FILE_VERSION}");
-        println!("vertices   {}", s.vertices);
-        println!(
+        out!("format     mtcut model, file version {MT_FILE_VERSION}");
+        out!("vertices   {}", s.vertices);
+        out!(
             "tets       {} over all levels (plus {} ghost tets), {} arcs",
-            s.pool_tets, s.ghost_tets, s.arcs
+            s.pool_tets,
+            s.ghost_tets,
+            s.arcs
         );
-        println!(
+        out!(
             "fragments  {} (DAG depth {}), {} component(s)",
-            s.fragments, s.dag_depth, s.components
+            s.fragments,
+            s.dag_depth,
+            s.components
         );
-        println!(
+        out!(
             "finest     {} tets; coarsest {} tets ({:.1}%)",
             s.finest_tets,
             s.coarsest_tets,
             100.0 * s.coarsest_tets as f64 / s.finest_tets.max(1) as f64
         );
-        println!(
+        out!(
             "error      {} metric, collapse errors {:e} .. {:e}",
-            i.error_metric, s.min_error, s.max_error
+            i.error_metric,
+            s.min_error,
+            s.max_error
         );
-        println!(
+        out!(
             "build      boundary tolerance {} of the diagonal, features {} (angle {}°)",
             i.boundary_tolerance,
             if i.preserve_features {
@@ -204,22 +219,29 @@ impl ModelInfo {
             },
             i.feature_angle_degrees
         );
-        println!(
+        out!(
             "bbox       [{}, {}, {}] .. [{}, {}, {}]",
-            lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
+            lo.x,
+            lo.y,
+            lo.z,
+            hi.x,
+            hi.y,
+            hi.z
         );
-        println!(
+        out!(
             "memory     {} bytes ({:.1} per input tet)",
-            s.heap_bytes, s.bytes_per_input_tet
+            s.heap_bytes,
+            s.bytes_per_input_tet
         );
         if self.problems.is_empty() {
-            println!("valid      yes");
+            out!("valid      yes");
         } else {
-            println!("valid      NO");
+            out!("valid      NO");
             for p in &self.problems {
-                println!("  problem: {p}");
+                out!("  problem: {p}");
             }
         }
+        Ok(())
     }
 }
 
@@ -228,17 +250,17 @@ fn run_model(args: &Args) -> CliResult {
         Ok(mt) => mt,
         Err(e) => {
             if args.json {
-                println!("{}", json!({"valid": false, "problems": [e.to_string()]}));
+                out!("{}", json!({"valid": false, "problems": [e.to_string()]}));
             }
             return Err(e.into());
         }
     };
     let info = ModelInfo::of(&mt);
     if args.json {
-        println!("{}", info.to_json());
+        out!("{}", info.to_json());
     } else {
-        println!("model      {}", args.mesh.display());
-        info.print_text();
+        out!("model      {}", args.mesh.display());
+        info.print_text()?;
     }
     if info.problems.is_empty() {
         Ok(())
@@ -256,17 +278,17 @@ pub fn run(args: Args) -> CliResult {
         Err(e) => {
             if args.json {
                 // Scripts get a verdict on stdout too; the exit code still says failure.
-                println!("{}", json!({"valid": false, "problems": [e.to_string()]}));
+                out!("{}", json!({"valid": false, "problems": [e.to_string()]}));
             }
             return Err(e.into());
         }
     };
     let info = MeshInfo::of(&mesh, report);
     if args.json {
-        println!("{}", info.to_json());
+        out!("{}", info.to_json());
     } else {
-        println!("mesh       {}", args.mesh.display());
-        info.print_text();
+        out!("mesh       {}", args.mesh.display());
+        info.print_text()?;
     }
     if info.problems.is_empty() {
         Ok(())

@@ -1,6 +1,16 @@
 //! `mtcut`: the command-line tool. Each subcommand lives in its own file and maps onto the
 //! library's API; this file only parses arguments and turns errors into exit codes.
 
+/// `println!` that returns the write error to the caller (as `?` does) instead of
+/// panicking: `mtcut info x.vtu | head -1` closes the pipe early, which is not an error
+/// worth more than a quiet exit (see `main`).
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout(), $($arg)*)?;
+    }};
+}
+
 mod build;
 mod convert;
 mod cut;
@@ -12,6 +22,7 @@ mod parse;
 mod roi;
 
 use clap::{Parser, Subcommand};
+
 use std::process::ExitCode;
 
 /// Multiresolution tetrahedral meshes that can be cut.
@@ -61,6 +72,13 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
+            // The reader went away (a closed pipe): nothing more to say to anyone.
+            let broken_pipe = e
+                .downcast_ref::<std::io::Error>()
+                .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe);
+            if broken_pipe {
+                return ExitCode::SUCCESS;
+            }
             eprintln!("mtcut: error: {e}");
             ExitCode::FAILURE
         }

@@ -75,14 +75,17 @@ pub fn run(args: Args) -> CliResult {
         j["valid"] = json!(true);
         j["seconds_load"] = json!(load_seconds);
         j["seconds_write"] = json!(write_seconds);
-        println!("{j}");
+        out!("{j}");
         return Ok(());
     }
-    println!(
+    out!(
         "roi        {} planes, {} cut the model; kept {} component(s), dropped {}",
-        stats.planes, stats.planes_cut, stats.components_kept, stats.components_dropped
+        stats.planes,
+        stats.planes_cut,
+        stats.components_kept,
+        stats.components_dropped
     );
-    println!(
+    out!(
         "sub-model  {} tets in the MT (input {}), {} fragments (input {}), {} vertices, valid",
         stats.tets_after,
         stats.tets_before,
@@ -90,7 +93,7 @@ pub fn run(args: Args) -> CliResult {
         stats.fragments_before,
         sub.nb_vertices()
     );
-    println!(
+    out!(
         "time       {:.3} s (load {:.3} s, write {:.3} s) -> {}",
         stats.seconds + load_seconds + write_seconds,
         load_seconds,
