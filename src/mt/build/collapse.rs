@@ -194,8 +194,8 @@ pub(super) struct Simplifier<'a, E: TetError + ?Sized> {
 
     // The current mesh.
     pub stars: Vec<Vec<Incident>>,
-    /// Scratch marks of `execute_round`: the vertices whose star it updates.
-    pub touched: Vec<bool>,
+    /// Scratch of `execute_round`: each changed vertex's position in its list.
+    pub bucket: Vec<u32>,
     pub stamp: Vec<u32>,
     pub class: Vec<VertexClass>,
     pub features: HashSet<(u32, u32), FxBuild>,
@@ -710,28 +710,42 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
         }
         changed.sort_unstable();
         changed.dedup();
-        incoming.sort_unstable_by_key(|(x, inc)| (*x, inc.id));
-        for &x in changed.iter() {
-            self.touched[x as usize] = true;
+        // The new incidences by vertex (every vertex of a new tet is in `changed`), each
+        // vertex's in pool order, by a counting sort: `incoming` is already in pool order.
+        for (k, &x) in changed.iter().enumerate() {
+            self.bucket[x as usize] = k as u32;
         }
-        let (class, touched) = (&self.class, &self.touched);
-        self.stars
-            .par_iter_mut()
-            .enumerate()
-            .filter(|(x, _)| touched[*x])
-            .for_each(|(x, star)| {
-                star.retain(|inc| {
-                    !inc.tet
-                        .iter()
-                        .any(|y| *y != GHOST && class[y.idx()] == VertexClass::Removed)
-                });
-                let x = x as u32;
-                let from = incoming.partition_point(|p| p.0 < x);
-                let to = incoming.partition_point(|p| p.0 <= x);
-                star.extend(incoming[from..to].iter().map(|p| p.1));
+        let mut start = vec![0u32; changed.len() + 1];
+        for (x, _) in &incoming {
+            debug_assert!(changed.binary_search(x).is_ok(), "vertex {x} of a new tet");
+            start[self.bucket[*x as usize] as usize + 1] += 1;
+        }
+        for k in 0..changed.len() {
+            start[k + 1] += start[k];
+        }
+        let mut fill = start.clone();
+        let mut sorted: Vec<Incident> = incoming.iter().map(|p| p.1).collect();
+        for (x, inc) in &incoming {
+            let k = &mut fill[self.bucket[*x as usize] as usize];
+            sorted[*k as usize] = *inc;
+            *k += 1;
+        }
+        // The changed stars are taken out, updated in parallel and put back.
+        let mut work: Vec<Vec<Incident>> = changed
+            .iter()
+            .map(|&x| std::mem::take(&mut self.stars[x as usize]))
+            .collect();
+        let class = &self.class;
+        work.par_iter_mut().enumerate().for_each(|(k, star)| {
+            star.retain(|inc| {
+                !inc.tet
+                    .iter()
+                    .any(|y| *y != GHOST && class[y.idx()] == VertexClass::Removed)
             });
-        for &x in changed.iter() {
-            self.touched[x as usize] = false;
+            star.extend_from_slice(&sorted[start[k] as usize..start[k + 1] as usize]);
+        });
+        for (&x, star) in changed.iter().zip(work) {
+            self.stars[x as usize] = star;
             self.stamp[x as usize] = self.stamp[x as usize].wrapping_add(1);
         }
     }

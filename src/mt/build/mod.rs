@@ -582,7 +582,7 @@ fn setup<'a, E: TetError + ?Sized>(
         raw_error: vec![0.0],
         tets,
         stars,
-        touched: vec![false; nv],
+        bucket: vec![0; nv],
         stamp: vec![0; nv],
         class,
         features,
