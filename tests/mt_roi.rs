@@ -7,6 +7,7 @@
 mod common;
 mod cut_common;
 mod mt_common;
+mod mtcut_common;
 
 use mtcut::cut::{RoiError, RoiRegion, region_of_interest};
 use mtcut::geom::{Aabb, DVec3};
@@ -22,28 +23,14 @@ fn sub_box(mt: &Mt, lo: f64, hi: f64) -> Aabb {
     }
 }
 
-fn thresholds(mt: &Mt, n: usize) -> Vec<ExtractOptions> {
-    let mut errors: Vec<f64> = (0..mt.nb_fragments())
-        .map(|f| mt.fragment_error(mtcut::mesh::FragmentId::from_usize(f)))
-        .filter(|e| e.is_finite())
-        .collect();
-    errors.sort_by(f64::total_cmp);
-    let mut out = vec![ExtractOptions::FINEST, ExtractOptions::COARSEST];
-    for k in 1..n - 1 {
-        out.push(ExtractOptions::threshold(
-            errors[(errors.len() - 1) * k / (n - 1)],
-        ));
-    }
-    out
-}
-
 /// Every extraction valid and inside the box (up to the MT cut's snapping, 1e-6 of the
 /// longest edge).
 fn check_sub(sub: &Mt, b: &Aabb, case: &str) {
     let report = sub.validate();
     assert!(report.is_valid(), "{case}: {report}");
     let slack = 1e-6 * Aabb::from_points(sub.positions()).diagonal();
-    for o in thresholds(sub, 10) {
+    // Ten uniform thresholds, 0 and +∞ included (no focus regions: the rng is unused).
+    for o in mtcut_common::requests(sub, 10, 0, &mut mtcut_common::Rng(1)) {
         let e = sub.extract(&o).expect("extraction");
         let v = e.mesh.validate();
         assert!(v.is_valid(), "{case}, {o:?}: {v}");

@@ -96,15 +96,7 @@ impl MeshInfo {
             self.tets,
             self.report.reoriented_tets
         );
-        out!(
-            "bbox       [{}, {}, {}] .. [{}, {}, {}]",
-            lo.x,
-            lo.y,
-            lo.z,
-            hi.x,
-            hi.y,
-            hi.z
-        );
+        out!("bbox       {}", bbox_text(lo, hi));
         out!("volume     {}", self.volume);
         out!(
             "boundary   {} faces, area {}",
@@ -219,15 +211,7 @@ impl ModelInfo {
             },
             i.feature_angle_degrees
         );
-        out!(
-            "bbox       [{}, {}, {}] .. [{}, {}, {}]",
-            lo.x,
-            lo.y,
-            lo.z,
-            hi.x,
-            hi.y,
-            hi.z
-        );
+        out!("bbox       {}", bbox_text(lo, hi));
         out!(
             "memory     {} bytes ({:.1} per input tet)",
             s.heap_bytes,
@@ -295,4 +279,12 @@ pub fn run(args: Args) -> CliResult {
     } else {
         Err(format!("{} is not a valid mesh", args.mesh.display()).into())
     }
+}
+
+/// `[x, y, z] .. [x, y, z]`, as both reports print a box.
+fn bbox_text(lo: mtcut::geom::DVec3, hi: mtcut::geom::DVec3) -> String {
+    format!(
+        "[{}, {}, {}] .. [{}, {}, {}]",
+        lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
+    )
 }

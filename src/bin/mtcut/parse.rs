@@ -71,19 +71,21 @@ pub struct Sphere {
     pub radius: f64,
 }
 
-pub fn sphere(text: &str) -> Result<Sphere, String> {
+/// Exactly `n` comma-separated numbers; `layout` says what they are, for the error.
+fn numbers(text: &str, n: usize, layout: &str) -> Result<Vec<f64>, String> {
     let parts: Vec<&str> = text.split(',').collect();
-    if parts.len() != 4 {
+    if parts.len() != n {
         return Err(format!(
-            "'{}' has {} number(s), expected 4 as x,y,z,r (centre and radius)",
+            "'{}' has {} number(s), expected {n} as {layout}",
             text.trim(),
             parts.len()
         ));
     }
-    let v = parts
-        .iter()
-        .map(|p| number(p))
-        .collect::<Result<Vec<f64>, String>>()?;
+    parts.iter().map(|p| number(p)).collect()
+}
+
+pub fn sphere(text: &str) -> Result<Sphere, String> {
+    let v = numbers(text, 4, "x,y,z,r (centre and radius)")?;
     let center = DVec3::new(v[0], v[1], v[2]);
     let radius = v[3];
     if !center.is_finite() {
@@ -98,18 +100,7 @@ pub fn sphere(text: &str) -> Result<Sphere, String> {
 /// A box `x0,y0,z0,x1,y1,z1`: six numbers, the min and max corners (whether it is
 /// finite and not empty is judged by the caller, which names the box).
 pub fn aabb(text: &str) -> Result<mtcut::geom::Aabb, String> {
-    let parts: Vec<&str> = text.split(',').collect();
-    if parts.len() != 6 {
-        return Err(format!(
-            "'{}' has {} number(s), expected 6 as x0,y0,z0,x1,y1,z1 (min and max corners)",
-            text.trim(),
-            parts.len()
-        ));
-    }
-    let v = parts
-        .iter()
-        .map(|p| number(p))
-        .collect::<Result<Vec<f64>, String>>()?;
+    let v = numbers(text, 6, "x0,y0,z0,x1,y1,z1 (min and max corners)")?;
     Ok(mtcut::geom::Aabb {
         min: DVec3::new(v[0], v[1], v[2]),
         max: DVec3::new(v[3], v[4], v[5]),
