@@ -2,8 +2,9 @@
 //! becomes two independent components, the written model is valid on reload, and the
 //! parts' finest levels add up to the input's volume; bad input (bad polygons, options
 //! meant for meshes, a component out of range) fails with a message and writes nothing;
-//! and whatever a sequence of cuts does, the output is valid or absent (the MT cut's known
-//! limit: sequences may break the MT, which the CLI must refuse to write).
+//! and a sequence of cuts gives a valid model (the CLI validates after every cut and would
+//! refuse to write a broken one, as for a blade continuing a crack in its own plane, the
+//! MT cut's known limit).
 
 mod cli_support;
 mod common;
