@@ -51,8 +51,8 @@
 //!    floor and ceiling of each fragment involved (tets, ghosts included) are split into
 //!    local parts, joined through shared vertices (and a part found on one level only —
 //!    a piece cut free inside the fragment — joined with the parts of the other level
-//!    occupying the same space, never across the crack). A fragment is involved when the
-//!    cut changed one of its tets, or when it has tets wholly on each side of C's plane:
+//!    occupying the same space). A fragment is involved when the cut changed one of its
+//!    tets, or when it has tets wholly on each side of C's plane:
 //!    after an earlier cut a fragment can hold pieces of one body connected only through
 //!    tets that went to another fragment, and a later plane can pass between them without
 //!    cutting any of its tets. Parts are then grouped by *body*: the parts and the
@@ -694,9 +694,6 @@ impl MtCutter {
         // take copies. `touched` lists every real tet the cut changed or may have made a
         // crack face of.
         let mut touched: Vec<u32> = Vec::new();
-        // The side of every tet the cut changed (step 3 keeps parts of opposite sides
-        // apart when it pairs the levels of a fragment).
-        let mut side_of: HashMap<u32, Side> = HashMap::new();
         let mut appended_parents: Vec<u32> = Vec::new();
         for (k, &parent) in cand.iter().enumerate() {
             match child_of[k] {
@@ -705,18 +702,15 @@ impl MtCutter {
                         let side = unsplit_side(k);
                         open.tets[parent.idx()] = for_side(tets[k], side);
                         touched.push(parent.0);
-                        side_of.insert(parent.0, side);
                     }
                 }
                 i => {
                     let ch = &children[i as usize];
                     open.tets[parent.idx()] = for_side(ch.tets[0], ch.sides[0]);
                     touched.push(parent.0);
-                    side_of.insert(parent.0, ch.sides[0]);
                     let (c, d) = (open.creator[parent.idx()], open.destroyer[parent.idx()]);
                     for j in 1..ch.len {
                         touched.push(open.tets.len() as u32);
-                        side_of.insert(open.tets.len() as u32, ch.sides[j]);
                         open.tets.push(for_side(ch.tets[j], ch.sides[j]));
                         open.creator.push(c);
                         open.destroyer.push(d);
@@ -741,10 +735,8 @@ impl MtCutter {
                 let (c, d) = (open.creator[g], open.destroyer[g]);
                 open.tets[g] = for_side(subs[0].0, subs[0].1);
                 ghost_touched.push(g as u32);
-                side_of.insert(g as u32, subs[0].1);
                 for &(t, side) in &subs[1..] {
                     ghost_touched.push(open.tets.len() as u32);
-                    side_of.insert(open.tets.len() as u32, side);
                     open.tets.push(for_side(t, side));
                     open.creator.push(c);
                     open.destroyer.push(d);
@@ -754,7 +746,6 @@ impl MtCutter {
                 let side = face_side.get(&key).copied().unwrap_or(Side::Positive);
                 open.tets[g] = for_side(tet, side);
                 ghost_touched.push(g as u32);
-                side_of.insert(g as u32, side);
             }
         }
         open.cell_data.push_copies(&appended_parents);
@@ -795,11 +786,7 @@ impl MtCutter {
                 if all_cut(&tet, lf) && !matched {
                     let g = [tet[lf[0]], tet[lf[1]], tet[lf[2]], GHOST];
                     crack.push((g, open.creator[t as usize], open.destroyer[t as usize]));
-                    let id = (n_pool + appended_parents.len() + crack.len() - 1) as u32;
-                    ghost_touched.push(id);
-                    if let Some(&side) = side_of.get(&t) {
-                        side_of.insert(id, side);
-                    }
+                    ghost_touched.push((n_pool + appended_parents.len() + crack.len() - 1) as u32);
                 }
             }
         }
@@ -862,13 +849,7 @@ impl MtCutter {
         let mut first_part: Vec<u32> = Vec::with_capacity(order.len() + 1);
         let mut next = nf as u32;
         for i in 0..order.len() {
-            let p = split_fragment(
-                &open.tets,
-                &open.positions,
-                &side_of,
-                &floor[i],
-                &ceiling[i],
-            );
+            let p = split_fragment(&open.tets, &open.positions, &floor[i], &ceiling[i]);
             first_part.push(next);
             next += p.iter().map(|&x| x + 1).max().unwrap_or(1);
             parts.push(p);
@@ -1025,13 +1006,7 @@ fn side_of_states(tet: &Tet, states: [u8; 4], positions: &[DVec3], polygon: &Cut
 /// centroid of one of its own (exact point-in-tet tests).
 ///
 /// Returns the part of each floor tet then each ceiling tet, numbered by first appearance.
-fn split_fragment(
-    tets: &[Tet],
-    positions: &[DVec3],
-    side_of: &HashMap<u32, Side>,
-    floor: &[u32],
-    ceiling: &[u32],
-) -> Vec<u32> {
+fn split_fragment(tets: &[Tet], positions: &[DVec3], floor: &[u32], ceiling: &[u32]) -> Vec<u32> {
     let n = floor.len() + ceiling.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
     let mut first: HashMap<VertexId, u32> = HashMap::new();
@@ -1077,19 +1052,6 @@ fn split_fragment(
                 ((c[0] + c[1] + c[2] + c[3]) * 0.25, Aabb::from_points(&c))
             })
             .collect();
-        // Two tets the cut put on opposite sides never pair: near the crack the levels'
-        // cut surfaces differ (snapping bends each its own way), so a tet of one level can
-        // hold the centroid of one across the crack on the other.
-        let side = |i: u32| {
-            side_of
-                .get(&all[i as usize])
-                .copied()
-                .filter(|s| *s != Side::Straddle)
-        };
-        let compatible = |i: u32, j: u32| match (side(i), side(j)) {
-            (Some(a), Some(b)) => a == b,
-            _ => true,
-        };
         let holds = |i: u32, p: DVec3| {
             if !shape[i as usize].1.contains(p) {
                 return false;
@@ -1103,7 +1065,7 @@ fn split_fragment(
         };
         for &i in &orphans {
             let others = if i < nfl { nfl..n as u32 } else { 0..nfl };
-            for j in others.filter(|&j| real(j) && compatible(i, j)) {
+            for j in others.filter(|&j| real(j)) {
                 if holds(j, shape[i as usize].0) || holds(i, shape[j as usize].0) {
                     union(&mut parent, i, j);
                 }
@@ -1127,15 +1089,10 @@ fn split_fragment(
             }
             let centroid = shape[i as usize].0;
             let others = if i < nfl { nfl..n as u32 } else { 0..nfl };
-            // The nearest on the same side; any, if the other level has none there.
-            let nearest = |same_side: bool| {
-                others
-                    .clone()
-                    .filter(|&j| real(j) && (!same_side || compatible(i, j)))
-                    .map(|j| (centroid.distance_squared(shape[j as usize].0), j))
-                    .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
-            };
-            let nearest = nearest(true).or_else(|| nearest(false));
+            let nearest = others
+                .filter(|&j| real(j))
+                .map(|j| (centroid.distance_squared(shape[j as usize].0), j))
+                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             if let Some((_, j)) = nearest {
                 union(&mut parent, i, j);
                 let r = find(&mut parent, i) as usize;
