@@ -63,7 +63,10 @@ cmake -S c-examples -B "$work/examples" -DCMAKE_PREFIX_PATH="$prefix" \
       -DCMAKE_BUILD_TYPE=Debug >/dev/null
 cmake --build "$work/examples" -j 2 >/dev/null
 ctest --test-dir "$work/examples" --output-on-failure
-if ! ctest --test-dir "$work/examples" -N | grep -q vtk_roundtrip; then
+# Listings are captured before grep reads them: under pipefail, `producer | grep -q` fails
+# whenever grep exits at the first match before the producer has written everything.
+examples=$(ctest --test-dir "$work/examples" -N)
+if ! grep -q vtk_roundtrip <<<"$examples"; then
   # CI installs libvtk9-dev: there the VTK example must have been built and run.
   [ -z "${CI:-}" ] || fail "VTK 9 was not found: the VTK example did not run"
   echo "note: VTK 9 not found, the VTK example was skipped (apt-get install libvtk9-dev)"
@@ -77,12 +80,14 @@ consumer() { # NAME CMAKE-ARGS...: configure, build and run c-examples/consumer
 }
 step "consumer: find_package(mtcut CONFIG REQUIRED) + mtcut::mtcut"
 consumer shared
-readelf -d "$work/shared/app" | grep -q "NEEDED.*\[libmtcut.so.$major\]" ||
+needed=$(readelf -d "$work/shared/app")
+grep -q "NEEDED.*\[libmtcut.so.$major\]" <<<"$needed" ||
   fail "the program does not record libmtcut.so.$major"
 
 step "consumer: find_package(mtcut CONFIG REQUIRED) + mtcut::mtcut_static"
 consumer static -DMTCUT_STATIC=ON
-if readelf -d "$work/static/app" | grep -q "NEEDED.*libmtcut"; then
+needed=$(readelf -d "$work/static/app")
+if grep -q "NEEDED.*libmtcut" <<<"$needed"; then
   fail "the statically linked program still needs libmtcut.so"
 fi
 
@@ -117,11 +122,11 @@ echo "find_package(mtcut $next) refuses $version, as it must"
 step "ParaView: pvbatch opens the outputs, checks them, saves screenshots"
 out=$work/examples/out
 pv_files=("$out/cube.vtu=$work/cube.json" "$out/cut-through.vtu" "$out/cut-part0.vtu")
-if ctest --test-dir "$work/examples" -N | grep -q "tetgen_mt"; then
+if grep -q "tetgen_mt" <<<"$examples"; then
   pv_files+=("$out/tetgen-coarse.vtu" "$out/tetgen-focus.vtu" "$out/tetgen-cut.vtu"
             "$out/tetgen-mt-cut-coarse.vtu")
 fi
-if ctest --test-dir "$work/examples" -N | grep -q "vtk_cut"; then
+if grep -q "vtk_cut" <<<"$examples"; then
   pv_files+=("$out/box-cut.vtu")
 fi
 # mesh_basics wrote the cube (8 points, 6 tets) with these columns.

@@ -14,7 +14,8 @@ step() { printf '\n==> %s\n' "$*"; }
 APT_PACKAGES=(cmake pkg-config g++ binutils valgrind libvtk9-dev libtet1.5-dev tetgen python3-vtk9 paraview xvfb xauth)
 missing=()
 for p in "${APT_PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ $status == *"ok installed"* ]] || missing+=("$p")
 done
 if ((${#missing[@]})); then
   if [ "$(id -u)" -ne 0 ]; then
@@ -30,7 +31,8 @@ fi
 
 # Rust components for the checks (present in a rustup toolchain unless removed).
 for c in rustfmt clippy; do
-  if ! rustup component list --installed 2>/dev/null | grep -q "^$c"; then
+  installed=$(rustup component list --installed 2>/dev/null || true)
+  if ! grep -q "^$c" <<<"$installed"; then
     step "installing rust component $c"
     rustup component add "$c"
   fi
