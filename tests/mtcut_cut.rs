@@ -257,11 +257,6 @@ fn options_the_mt_cannot_honour_are_refused() {
 /// plain-mesh engine passes the same test: tests/cut_engine.rs). The progressive scalpel
 /// of issue 7 needs it.
 #[test]
-#[ignore = "KNOWN FAILURE (issues 6, 7 open): the finest level stays valid, but on coarser \
-            levels the second step snaps the first step's crack tips (face points, which lie \
-            up to the snapping distance off the plane) onto its cut and duplicates them, and \
-            a child lying flat in the plane between the lips takes one side: boundary edges \
-            bounding four faces (FragmentNotConforming)"]
 fn a_blade_swept_across_the_mt_stays_valid() {
     use mtcut::geom::{DVec3, Tolerance, scalpel_sweep};
     let options =

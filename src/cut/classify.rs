@@ -190,9 +190,21 @@ impl TetClass {
 /// has to be consistent).
 #[inline]
 pub fn vertex_state(polygon: &CutPolygon, snap: Tolerance, p: DVec3, scale: f64) -> u8 {
+    vertex_state_in_band(polygon, snap, 0.0, p, scale)
+}
+
+/// [`vertex_state`], a vertex on the plane also counting as on the cut when its projection
+/// lies within `band × scale` outside C (see [`StateClassifier::with_contour_band`]).
+fn vertex_state_in_band(
+    polygon: &CutPolygon,
+    snap: Tolerance,
+    band: f64,
+    p: DVec3,
+    scale: f64,
+) -> u8 {
     let d = polygon.signed_distance(p);
     let r = snap.distance(scale);
-    if d.abs() <= r && polygon.projection_distance(p) <= r {
+    if d.abs() <= r && polygon.projection_distance(p) <= r.max(band * scale) {
         return ON;
     }
     match polygon.side_filtered(p, d) {
@@ -214,6 +226,9 @@ pub struct StateClassifier<'a> {
     filter: f64,
     /// Beyond this distance no vertex of the pool can be snapped.
     far: f64,
+    /// Relative width of the band outside C's contour where a vertex on the plane still
+    /// counts as on the cut (0 unless [`with_contour_band`](Self::with_contour_band)).
+    band: f64,
 }
 
 impl<'a> StateClassifier<'a> {
@@ -233,7 +248,18 @@ impl<'a> StateClassifier<'a> {
             offset: polygon.plane().offset,
             filter,
             far: snap.distance(max_scale).max(filter),
+            band: 0.0,
         }
+    }
+
+    /// Vertices on the plane (within snapping distance) whose projection lies outside C
+    /// by at most `relative` × their scale count as on the cut too. The MT cut uses it so
+    /// that a cut continuing an earlier one in the same plane takes the earlier crack tips
+    /// on its contour (which lie up to the face-point margin off the earlier contour) as
+    /// part of the crack (see [`super::mt_cut`]).
+    pub fn with_contour_band(mut self, relative: f64) -> Self {
+        self.band = relative;
+        self
     }
 
     #[inline(always)]
@@ -277,7 +303,7 @@ impl<'a> StateClassifier<'a> {
     #[cold]
     #[inline(never)]
     fn near(&self, p: DVec3, scale: f64) -> u8 {
-        vertex_state(self.polygon, self.snap, p, scale)
+        vertex_state_in_band(self.polygon, self.snap, self.band, p, scale)
     }
 
     /// The states of a tet's vertices. Branch-free unless a vertex is near the plane (a

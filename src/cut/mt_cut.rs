@@ -33,6 +33,20 @@
 //!    With the MT's `snap` (at most [`MAX_MT_SNAP`], default 1e-6), "snapped" means on
 //!    the plane up to rounding: degenerate cuts (through vertices, along edges and faces).
 //!
+//!    **A cut continuing an earlier one in its plane** (a blade swept in steps, each
+//!    step cutting the quadrilateral it swept) meets the earlier crack's vertices on its
+//!    plane: its tips (face points, which the face-point margin keeps off the earlier
+//!    contour) on the new polygon's contour, and the lips behind it. Two rules keep every
+//!    level consistent there. A vertex on the plane within a *contour band* outside C
+//!    (the face-point margin, at most 5% of the vertex's scale) counts as on the cut, so
+//!    the earlier tips join the crack and are duplicated once surrounded by it, instead
+//!    of being met by new tips a rounding error away. A vertex on the plane farther
+//!    outside C is not cut, and its exact side is rounding noise; it takes the side of
+//!    the other vertices of its tets when those all lie on one side (one decision per
+//!    cluster of such vertices joined by edges), so a lip tet is not taken for a tet C
+//!    crosses and split into children lying flat between the lips
+//!    (`settle_plane_vertices`; tests/mtcut_cut.rs, `a_blade_swept_across_the_mt_stays_valid`).
+//!
 //!    **Which snapped vertices are duplicated** is decided once per vertex over all
 //!    levels: a vertex the cut passes through gets one copy, used by the negative tets of
 //!    every level, when tets of both sides surround it and none of its tets, on any level,
@@ -52,10 +66,12 @@
 //!    local parts, joined through shared vertices (and a part found on one level only —
 //!    a piece cut free inside the fragment — joined with the parts of the other level
 //!    occupying the same space). A fragment is involved when the cut changed one of its
-//!    tets, or when it has tets wholly on each side of C's plane:
-//!    after an earlier cut a fragment can hold pieces of one body connected only through
-//!    tets that went to another fragment, and a later plane can pass between them without
-//!    cutting any of its tets. Parts are then grouped by *body*: the parts and the
+//!    tets, or when it is *cracked*: an earlier cut left it in several parts that one
+//!    body joined through other fragments (a crack ending inside the body). The cut that
+//!    finally separates that body may touch none of its tets — a blade swept in steps
+//!    separates it at the last step, far from the first ones — so cracked fragments
+//!    (remembered by the cutter, found again when it is created) take part in every cut
+//!    that changes the MT. Parts are then grouped by *body*: the parts and the
 //!    untouched fragments joined through the tets between them (the arcs). A fragment
 //!    whose parts lie in `k` bodies becomes `k` fragments (the first keeps its id, the
 //!    others are appended with its kind and error), each creating and destroying the tets
@@ -99,11 +115,8 @@
 //! * Every level is cut, so the pool grows with every cut by several tets per tet cut on
 //!   every level (the tests' 50 random cuts through fandisk take its pool from 0.15 M to
 //!   5.9 M tets).
-//! * A cut continuing an earlier crack in its own plane (a blade swept in steps) breaks
-//!   the coarser levels: the earlier crack tips (face points, up to the snapping distance
-//!   off the plane) are snapped onto the new cut and duplicated, and a child lying flat in
-//!   the plane between the lips takes one side (tests/mtcut_cut.rs,
-//!   `a_blade_swept_across_the_mt_stays_valid`, ignored). The finest level stays valid.
+//! * The contour band extends a crack beyond C by up to 5% of an edge, where vertices lie
+//!   on C's plane just outside it (also on a fresh mesh cut through its vertices).
 //! * A crack follows C up to a tet's size near C's contour (the tips, as on a plain
 //!   mesh): a later cut can cross an earlier polygon in that band.
 
@@ -220,6 +233,11 @@ pub struct MtCutter {
     bounds: Aabb,
     scratch: CutScratch,
     options: CutOptions,
+    /// Per fragment: whether its floor and ceiling form several parts (see
+    /// [`split_fragment`]) that one body still joins through other fragments. Such a
+    /// fragment is involved in every later cut: the cut that separates the body may not
+    /// touch it.
+    cracked: Vec<bool>,
 }
 
 /// Largest `snap` an MT cut accepts (see the module docs, "Limits").
@@ -295,6 +313,7 @@ impl MtCutter {
         }
         let max_scale = scales.iter().copied().fold(0.0, f64::max);
         let bounds = Aabb::from_points(mt.positions());
+        let cracked = cracked_fragments(&mt);
         Ok(MtCutter {
             mt: Some(mt),
             scales,
@@ -302,6 +321,7 @@ impl MtCutter {
             bounds,
             scratch: CutScratch::new(),
             options,
+            cracked,
         })
     }
 
@@ -349,7 +369,8 @@ impl MtCutter {
         let positions = mt.positions();
 
         // Step 1: fragments by box, then the tets they create by vertex states.
-        let classifier = StateClassifier::new(polygon, opts.snap, &self.bounds, self.max_scale);
+        let classifier = StateClassifier::new(polygon, opts.snap, &self.bounds, self.max_scale)
+            .with_contour_band(contour_band(&opts));
         let coord = self
             .bounds
             .min
@@ -357,7 +378,7 @@ impl MtCutter {
             .max(self.bounds.max.abs())
             .max_element();
         let slack = 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element());
-        let margin = 2.0 * opts.snap.distance(self.max_scale) + slack;
+        let margin = (2.0 * opts.snap.relative + contour_band(&opts)) * self.max_scale + slack;
         let cbox = polygon.bbox();
         let grown = Aabb {
             min: cbox.min - DVec3::splat(margin),
@@ -375,42 +396,35 @@ impl MtCutter {
         };
         let mut cand: Vec<TetId> = Vec::new();
         let mut states: Vec<[u8; 4]> = Vec::new();
-        // Per fragment, whether its floor or ceiling has a tet wholly on the positive (bit
-        // 0) or the negative (bit 1) side of C's plane. A fragment with both may be cut
-        // apart without any of its tets being cut: after an earlier cut it can hold
-        // pieces connected only through tets that went to another fragment (parts of one
-        // body stay one fragment), and a later plane can pass between them.
-        let mut sides_seen = vec![0u8; mt.nb_fragments()];
         for f in 0..mt.nb_fragments() {
             let f = FragmentId::from_usize(f);
             if mt.fragment_kind(f) == FragmentKind::Drain || !box_meets(&mt.fragment_bbox(f)) {
                 continue;
             }
-            for a in mt.out_arcs(f) {
-                let d = mt.arc_destroyer(a as usize);
-                for t in mt.arc_tets(a as usize).map(TetId::from_usize) {
-                    let tet = mt.tet(t);
-                    if tet[3] == GHOST {
-                        continue;
-                    }
-                    stats.tets_tested += 1;
-                    let s = classifier.tet(positions, &self.scales, &tet);
-                    let side = match s.map(|x| 1u8 << x).iter().fold(0, |m, b| m | b) {
-                        x if x == 1 << POS => 1,
-                        x if x == 1 << NEG => 2,
-                        _ => 0,
-                    };
-                    sides_seen[f.idx()] |= side;
-                    sides_seen[d.idx()] |= side;
-                    if is_candidate(s)
-                        && box_meets(&Aabb::from_points(&tet.map(|v| positions[v.idx()])))
-                    {
-                        cand.push(t);
-                        states.push(s);
-                    }
+            for t in mt.created_tets(f) {
+                let tet = mt.tet(t);
+                if tet[3] == GHOST {
+                    continue;
+                }
+                stats.tets_tested += 1;
+                let s = classifier.tet(positions, &self.scales, &tet);
+                if is_candidate(s)
+                    && box_meets(&Aabb::from_points(&tet.map(|v| positions[v.idx()])))
+                {
+                    cand.push(t);
+                    states.push(s);
                 }
             }
         }
+        settle_plane_vertices(
+            polygon,
+            opts,
+            positions,
+            &self.scales,
+            &mut cand,
+            &mut states,
+            |t| mt.tet(t),
+        );
         let tets: Vec<Tet> = cand.iter().map(|&t| mt.tet(t)).collect();
         stats.tets_candidate = cand.len();
         stats.time.query = start.elapsed().as_secs_f64();
@@ -804,7 +818,7 @@ impl MtCutter {
         let nf = open.kind.len();
         // (A cut that changed no tet separates nothing: then no fragment is involved.)
         let changed_any = !touched.is_empty() || !ghost_touched.is_empty();
-        let mut involved: Vec<bool> = sides_seen.iter().map(|&s| changed_any && s == 3).collect();
+        let mut involved: Vec<bool> = self.cracked.iter().map(|&c| changed_any && c).collect();
         for &t in touched.iter().chain(&ghost_touched) {
             involved[open.creator[t as usize].idx()] = true;
             involved[open.destroyer[t as usize].idx()] = true;
@@ -871,8 +885,10 @@ impl MtCutter {
         for &[c, d] in part_of.values() {
             union(&mut body, c, d);
         }
+        self.cracked.resize(nf, false);
         for (i, &f) in order.iter().enumerate() {
             let n_parts = first_part[i + 1] - first_part[i];
+            self.cracked[f.idx()] = n_parts > 1;
             if n_parts < 2 {
                 continue;
             }
@@ -894,6 +910,13 @@ impl MtCutter {
             if n_groups < 2 {
                 continue;
             }
+            // Each new fragment is cracked when its group holds several parts.
+            let mut sizes = vec![0u32; n_groups as usize];
+            for &g in &group {
+                sizes[g as usize] += 1;
+            }
+            self.cracked[f.idx()] = sizes[0] > 1;
+            self.cracked.extend(sizes[1..].iter().map(|&n| n > 1));
             stats.fragments_split += 1;
             let first_new_fragment = open.kind.len() as u32;
             for _ in 1..n_groups {
@@ -922,6 +945,23 @@ impl MtCutter {
         stats.time.total = start.elapsed().as_secs_f64();
         Ok(stats)
     }
+}
+
+/// [`MtCutter::cracked`] of a loaded or built MT: the fragments whose floor and ceiling form
+/// several parts.
+fn cracked_fragments(mt: &Mt) -> Vec<bool> {
+    let tets: Vec<Tet> = (0..mt.nb_tets())
+        .map(|t| mt.tet(TetId::from_usize(t)))
+        .collect();
+    (0..mt.nb_fragments())
+        .map(|f| {
+            let f = FragmentId::from_usize(f);
+            let floor: Vec<u32> = mt.destroyed_tets(f).map(|t| t.0).collect();
+            let ceiling: Vec<u32> = mt.created_tets(f).map(|t| t.0).collect();
+            let parts = split_fragment(&tets, mt.positions(), &floor, &ceiling);
+            parts.iter().any(|&p| p > 0)
+        })
+        .collect()
 }
 
 /// "Is fragment `b` a successor of `a` (or `a` itself)?" over the DAG before the cut: a
@@ -967,6 +1007,110 @@ impl Reach {
         }
         false
     }
+}
+
+/// The contour band of an MT cut ([`StateClassifier::with_contour_band`]): the face-point
+/// margin, at most 5% of a vertex's scale.
+fn contour_band(opts: &CutOptions) -> f64 {
+    opts.face_point_margin.min(0.05)
+}
+
+/// Vertices within snapping distance of C's plane but outside C (and its contour band:
+/// not cut, so only their side matters) take the side of their neighbours when every
+/// candidate tet around them, on every level, has its other vertices off the plane on that
+/// one side; their exact side is kept otherwise. Such vertices are on the plane up to
+/// rounding: the lips of an earlier cut in the same plane (a blade swept in steps: its
+/// earlier cut points lie just behind the new polygon). Their exact side is then rounding
+/// noise, and a lip tet holding one on the wrong side of its lip, with crack tips of the
+/// earlier cut on the new polygon's contour, would be taken for a tet C crosses and split
+/// into children lying flat between the lips, joining both lips (differently on each
+/// level: the MT condition breaks). The decision is taken per cluster of such vertices
+/// joined by edges of candidate tets, so every tet sharing an edge or a face still sees
+/// the same states there, and no edge between two of them is taken for crossed when
+/// their exact sides agree. Tets the new states leave neither straddling nor touching the
+/// cut are dropped from the candidates.
+fn settle_plane_vertices(
+    polygon: &CutPolygon,
+    opts: CutOptions,
+    positions: &[DVec3],
+    scales: &[f64],
+    cand: &mut Vec<TetId>,
+    states: &mut Vec<[u8; 4]>,
+    tet_of: impl Fn(TetId) -> Tet,
+) {
+    let near = |v: VertexId, s: u8| {
+        s != ON
+            && polygon.signed_distance(positions[v.idx()]).abs()
+                <= opts.snap.distance(scales[v.idx()])
+    };
+    // Vertices on the plane outside C, numbered; clusters of them joined by the edges of
+    // candidate tets (one decision per cluster, so no edge between two of them is taken
+    // for crossed when their exact sides agree: its crossing would lie off the edge); the
+    // sides (bit per state) of the other vertices of their tets.
+    let mut index: HashMap<VertexId, u32> = HashMap::new();
+    let mut parent: Vec<u32> = Vec::new();
+    let mut sides: Vec<u8> = Vec::new();
+    let mut flags: Vec<u8> = Vec::with_capacity(cand.len());
+    for (&t, s) in cand.iter().zip(states.iter()) {
+        let tet = tet_of(t);
+        let mut flag = 0u8;
+        for j in 0..4 {
+            if near(tet[j], s[j]) {
+                flag |= 1 << j;
+            }
+        }
+        flags.push(flag);
+        if flag == 0 {
+            continue;
+        }
+        let mut others = 0u8;
+        for j in (0..4).filter(|&j| flag & (1 << j) == 0 && s[j] != ON) {
+            others |= 1 << s[j];
+        }
+        let mut first = None;
+        for j in (0..4).filter(|&j| flag & (1 << j) != 0) {
+            let i = *index.entry(tet[j]).or_insert_with(|| {
+                parent.push(parent.len() as u32);
+                sides.push(0);
+                parent.len() as u32 - 1
+            });
+            sides[i as usize] |= others;
+            match first {
+                None => first = Some(i),
+                Some(f) => union(&mut parent, f, i),
+            }
+        }
+    }
+    if index.is_empty() {
+        return;
+    }
+    let mut cluster = vec![0u8; parent.len()];
+    for i in 0..parent.len() as u32 {
+        let r = find(&mut parent, i);
+        cluster[r as usize] |= sides[i as usize];
+    }
+    let mut keep = 0;
+    for k in 0..cand.len() {
+        let (t, mut s) = (cand[k], states[k]);
+        if flags[k] != 0 {
+            let tet = tet_of(t);
+            for j in (0..4).filter(|&j| flags[k] & (1 << j) != 0) {
+                let r = find(&mut parent, index[&tet[j]]);
+                match cluster[r as usize] {
+                    x if x == 1 << POS => s[j] = POS,
+                    x if x == 1 << NEG => s[j] = NEG,
+                    _ => {}
+                }
+            }
+        }
+        if is_candidate(s) {
+            cand[keep] = t;
+            states[keep] = s;
+            keep += 1;
+        }
+    }
+    cand.truncate(keep);
+    states.truncate(keep);
 }
 
 /// The side of a tet the tables leave whole: the side of its vertices off the cut
