@@ -1,0 +1,187 @@
+//! Progressive scalpel cuts on the MT (issue 7, item 4): a blade moved in time steps, each
+//! step cutting only the area it swept. Incisions that turn, a blade that tilts as it
+//! moves (non-planar sweeps, two triangles per step), an incision that ends inside the
+//! body and is extended later, and new incisions meeting an earlier one (T) or crossing it
+//! (X). The ignored ones fail today (see their reasons); they are the work left on
+//! issue 7's item 4. After every step the MT is valid, the finest and coarsest meshes keep their volume,
+//! and extractions at 10 thresholds (and focus regions at some steps) are valid meshes that
+//! no polygon applied so far crosses.
+
+mod mt_common;
+mod mtcut_common;
+
+use mtcut::cut::MtCutter;
+use mtcut::geom::{Aabb, CutPolygon, DVec3, Tolerance, scalpel_sweep};
+use mtcut_common::*;
+
+/// A blade position: the segment between two points.
+type Blade = [DVec3; 2];
+
+struct Run {
+    name: &'static str,
+    cutter: MtCutter,
+    volumes: (f64, f64),
+    polygons: Vec<CutPolygon>,
+    steps: usize,
+}
+
+impl Run {
+    fn new(name: &'static str) -> Run {
+        let mt = mt_common::built(name).1.clone();
+        let volumes = extreme_volumes(&mt);
+        let options =
+            MtCutter::DEFAULT_OPTIONS.with_face_point_margin(mtcut::cut::MIN_FACE_POINT_MARGIN);
+        Run {
+            name,
+            cutter: MtCutter::new(mt, options).expect("options"),
+            volumes,
+            polygons: Vec::new(),
+            steps: 0,
+        }
+    }
+
+    fn bounds(&self) -> Aabb {
+        Aabb::from_points(self.cutter.mt().positions())
+    }
+
+    /// Moves the blade through `path`, one sweep per consecutive pair, checking after each.
+    fn sweep(&mut self, what: &str, path: &[Blade]) {
+        for w in path.windows(2) {
+            let sweep = scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 })
+                .unwrap_or_else(|e| panic!("{} {what}: sweep: {e}", self.name));
+            for polygon in sweep {
+                self.cutter
+                    .cut(&polygon)
+                    .unwrap_or_else(|e| panic!("{} {what}: cut refused: {e}", self.name));
+                self.polygons.push(polygon);
+            }
+            self.steps += 1;
+            let regions = usize::from(self.steps % 4 == 0);
+            let req = requests(self.cutter.mt(), 10, regions, &mut Rng(self.steps as u64));
+            if let Err(m) = check_after_cut(&self.cutter, self.volumes, &self.polygons, &req) {
+                panic!("{} {what}, step {}: {m}", self.name, self.steps);
+            }
+        }
+    }
+
+    fn components(&self) -> usize {
+        self.cutter.mt().nb_components()
+    }
+}
+
+/// A blade spanning the body in z (with margin) at (x, y).
+fn vertical(b: &Aabb, x: f64, y: f64) -> Blade {
+    let d = b.max - b.min;
+    [
+        DVec3::new(x, y, b.min.z - 0.1 * d.z),
+        DVec3::new(x, y, b.max.z + 0.1 * d.z),
+    ]
+}
+
+/// An incision that turns by 8° per step (each sweep planar, consecutive ones at an angle),
+/// stops inside the body, and is later extended until it leaves the body.
+#[test]
+#[ignore = "KNOWN FAILURE (issue 7 open): a sweep continuing the last one at an angle meets \
+            its crack tips off its own plane (they lie up to the face-point margin from the \
+            shared edge, in the old plane), where neither the contour band nor snapping \
+            reaches them: boundary edges bounding four faces at the first turn on fandisk"]
+fn a_turning_incision_stopped_inside_then_extended() {
+    for name in mt_common::MESHES {
+        let mut run = Run::new(name);
+        let b = run.bounds();
+        let (c, d) = (b.center(), b.max - b.min);
+        let r = 0.6 * d.x.max(d.y);
+        // An arc around a centre off the body, entering from -x.
+        let centre = DVec3::new(b.min.x - 0.1 * d.x, c.y - r, c.z);
+        let at = |deg: f64| {
+            let a = (90.0 - deg).to_radians();
+            let p = centre + DVec3::new(r * a.cos(), r * a.sin(), 0.0);
+            vertical(&b, p.x, p.y)
+        };
+        let first: Vec<Blade> = (0..6).map(|k| at(-8.0 + 8.0 * k as f64)).collect();
+        run.sweep("first part", &first);
+        assert_eq!(run.components(), 1, "{name}: a partial incision separated the body");
+        let rest: Vec<Blade> = (5..16).map(|k| at(-8.0 + 8.0 * k as f64)).collect();
+        run.sweep("extension", &rest);
+    }
+}
+
+/// A blade tilting as it moves straight across: every sweep is non-planar (two triangles),
+/// each step continuing the last at an angle. Through the whole body: it separates.
+#[test]
+#[ignore = "KNOWN FAILURE (issue 7 open): as a_turning_incision_stopped_inside_then_extended \
+            (each step's two triangles meet at an angle)"]
+fn a_tilting_blade_across_the_body_separates_it() {
+    for name in mt_common::MESHES {
+        let mut run = Run::new(name);
+        let b = run.bounds();
+        let (c, d) = (b.center(), b.max - b.min);
+        let blade = |k: usize| {
+            let x = b.min.x - 0.05 * d.x + 1.1 * d.x * k as f64 / 10.0;
+            let tilt = 0.15 * d.y * ((k as f64) * 0.9).sin();
+            [
+                DVec3::new(x, c.y + tilt, b.min.z - 0.1 * d.z),
+                DVec3::new(x, c.y - tilt + 0.01 * d.y, b.max.z + 0.1 * d.z),
+            ]
+        };
+        let path: Vec<Blade> = (0..=10).map(blade).collect();
+        run.sweep("tilting", &path);
+        assert!(run.components() >= 2, "{name}: the blade did not separate");
+    }
+}
+
+/// A blade cutting from above the body down to mid-depth, moved along `from`→`to` in steps.
+fn shallow_path(b: &Aabb, from: (f64, f64), to: (f64, f64), steps: usize) -> Vec<Blade> {
+    let d = b.max - b.min;
+    let depth = b.min.z + 0.45 * d.z;
+    (0..=steps)
+        .map(|k| {
+            let t = k as f64 / steps as f64;
+            let (x, y) = (from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1));
+            [
+                DVec3::new(x, y, b.max.z + 0.1 * d.z),
+                DVec3::new(x, y, depth),
+            ]
+        })
+        .collect()
+}
+
+/// A shallow incision along x, then a second one starting outside the body and ending on
+/// the first (T).
+#[test]
+#[ignore = "KNOWN FAILURE (issue 7 open): passes on fandisk and liver; on pinion the second \
+            step of the T leaves doubled faces in four fragments (FragmentNotConforming), \
+            not analysed yet"]
+fn an_incision_meeting_an_earlier_one() {
+    for name in mt_common::MESHES {
+        let mut run = Run::new(name);
+        let b = run.bounds();
+        let (c, d) = (b.center(), b.max - b.min);
+        let (x0, x1) = (b.min.x - 0.05 * d.x, b.max.x + 0.05 * d.x);
+        let y0 = b.min.y - 0.05 * d.y;
+        let ya = c.y + 0.013 * d.y;
+        run.sweep("first incision", &shallow_path(&b, (x0, ya), (x1, ya), 8));
+        let xt = c.x - 0.21 * d.x;
+        run.sweep("T", &shallow_path(&b, (xt, y0), (xt, ya), 6));
+    }
+}
+
+/// A shallow incision across the whole body in y, in 10 steps, then one crossing it (X).
+#[test]
+#[ignore = "KNOWN FAILURE (issue 7 open): on fandisk the eighth step of a shallow straight \
+            incision leaves earlier crack tips unsnapped (their star in the finest mesh is \
+            not one group per side), and their exact side, rounding noise, makes lip tets \
+            crossed: boundary edges bounding four faces"]
+fn an_incision_crossing_an_earlier_one() {
+    for name in mt_common::MESHES {
+        let mut run = Run::new(name);
+        let b = run.bounds();
+        let (c, d) = (b.center(), b.max - b.min);
+        let (y0, y1) = (b.min.y - 0.05 * d.y, b.max.y + 0.05 * d.y);
+        let xx = c.x + 0.17 * d.x;
+        run.sweep("first incision", &shallow_path(&b, (xx, y0), (xx, y1), 10));
+        let (x0, x1) = (b.min.x - 0.05 * d.x, b.max.x + 0.05 * d.x);
+        let ya = c.y + 0.013 * d.y;
+        run.sweep("X", &shallow_path(&b, (x0, ya), (x1, ya), 8));
+    }
+}
