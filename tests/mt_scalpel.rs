@@ -100,7 +100,11 @@ fn a_turning_incision_stopped_inside_then_extended() {
         };
         let first: Vec<Blade> = (0..6).map(|k| at(-8.0 + 8.0 * k as f64)).collect();
         run.sweep("first part", &first);
-        assert_eq!(run.components(), 1, "{name}: a partial incision separated the body");
+        assert_eq!(
+            run.components(),
+            1,
+            "{name}: a partial incision separated the body"
+        );
         let rest: Vec<Blade> = (5..16).map(|k| at(-8.0 + 8.0 * k as f64)).collect();
         run.sweep("extension", &rest);
     }

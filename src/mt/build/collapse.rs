@@ -71,6 +71,20 @@ pub(super) struct Candidate {
     pub ticket: u32,
 }
 
+impl Candidate {
+    /// A placeholder for a vertex without a queued candidate (never read: its ticket is
+    /// never live).
+    pub const NONE: Candidate = Candidate {
+        v: u32::MAX,
+        w: u32::MAX,
+        priority: f64::INFINITY,
+        stamp_v: 0,
+        stamp_w: 0,
+        checked: false,
+        ticket: u32::MAX,
+    };
+}
+
 /// Why candidate collapses were turned down, counted for the build statistics.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Rejections {
