@@ -89,6 +89,7 @@ pub mod mt_cut;
 pub mod options;
 pub mod report;
 pub mod roi;
+pub mod scalpel;
 pub mod split;
 pub mod table_gen;
 pub mod tables;
@@ -101,6 +102,7 @@ pub use mt_cut::{MtCutStats, MtCutTimes, MtCutter};
 pub use options::{CutError, CutOptions, MIN_FACE_POINT_MARGIN, MIN_SNAP, Scheme};
 pub use report::{CutResult, CutStats, CutTimes, SplitRecord};
 pub use roi::{RoiError, RoiRegion, RoiStats, region_of_interest};
+pub use scalpel::{Blade, Scalpel, ScalpelError, ScalpelStep};
 pub use tables::{CutCase, Side};
 
 #[cfg(doc)]

@@ -20,6 +20,7 @@ mod extract;
 mod info;
 mod parse;
 mod roi;
+mod scalpel;
 
 use clap::{Parser, Subcommand};
 
@@ -50,6 +51,9 @@ enum Command {
     /// Restrict an .mt model to a box or a sphere (everything outside omitted), as a model
     /// of its own.
     Roi(roi::Args),
+    /// Move a scalpel through an .mt model in time steps (a blade position per step, from
+    /// a JSON file), writing the current mesh after each step as a ParaView time series.
+    Scalpel(scalpel::Args),
     /// Run the main job on the embedded liver model and write the results to a folder.
     Demo(demo::Args),
 }
@@ -67,6 +71,7 @@ fn main() -> ExitCode {
         Command::Extract(a) => extract::run(a),
         Command::Cut(a) => cut::run(a),
         Command::Roi(a) => roi::run(a),
+        Command::Scalpel(a) => scalpel::run(a),
         Command::Demo(a) => demo::run(a),
     };
     match result {

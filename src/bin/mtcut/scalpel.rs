@@ -1,0 +1,218 @@
+//! `mtcut scalpel MODEL.mt --path PATH.json -o DIR [--threshold E | --budget N]
+//! [--save OUT.mt] [--json]`: a scalpel moved through a model in time steps
+//! ([`mtcut::cut::Scalpel`]), each step cutting every level with the area the blade swept.
+//! After each step the model is validated (exhaustively) and the current mesh (the finest,
+//! or the chosen resolution) is written to `DIR/step-NNNN.vtu` (step 0: before the first
+//! cut), listed with its time step in `DIR/scalpel.pvd` for ParaView.
+//!
+//! `PATH.json` is a list of blade positions, one per time step, each two 3-D points (the
+//! blade's ends): `[[[x,y,z],[x,y,z]], [[x,y,z],[x,y,z]], ...]`, at least two.
+//!
+//! A step that leaves an invalid model (see [`mtcut::cut::scalpel`]'s limits: a path
+//! that turns breaks the coarser levels) stops the run with an error naming the step;
+//! the steps before it stay written and listed, and `--save` writes nothing.
+
+use crate::CliResult;
+use crate::parse;
+use mtcut::cut::{Blade, Scalpel};
+use mtcut::geom::DVec3;
+use mtcut::io::{PvdEntry, write_mesh, write_pvd};
+use mtcut::mt::{ExtractOptions, Mt};
+use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// At most one resolution for the current mesh.
+#[derive(clap::Args, Debug)]
+#[group(multiple = false)]
+pub struct Resolution {
+    /// The current mesh at this error threshold (default: the finest mesh).
+    #[arg(long, value_name = "E", allow_hyphen_values = true, value_parser = parse::threshold)]
+    threshold: Option<f64>,
+    /// The current mesh with at most N tets.
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = parse::count)]
+    budget: Option<usize>,
+}
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// The model (.mt).
+    model: PathBuf,
+    /// The blade's positions over time (JSON, see `mtcut scalpel --help`).
+    #[arg(long, value_name = "PATH.json")]
+    path: PathBuf,
+    /// Folder for the time series (created if missing).
+    #[arg(short, long, value_name = "DIR")]
+    output: PathBuf,
+    #[command(flatten)]
+    resolution: Resolution,
+    /// Also write the cut model after the last step (.mt).
+    #[arg(long, value_name = "OUT.mt")]
+    save: Option<PathBuf>,
+    /// Print the statistics as one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The blade positions of a path file.
+fn read_path(path: &Path) -> Result<Vec<Blade>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let value: Value =
+        serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", path.display()))?;
+    let bad = |what: String| {
+        format!(
+            "{}: {what}; expected a list of blade positions, each two points [x,y,z]: \
+             [[[x,y,z],[x,y,z]], ...]",
+            path.display()
+        )
+    };
+    let steps = value
+        .as_array()
+        .ok_or_else(|| bad("the top level is not a list".into()))?;
+    let point = |v: &Value, k: usize, e: usize| -> Result<DVec3, String> {
+        let c = v
+            .as_array()
+            .filter(|c| c.len() == 3)
+            .ok_or_else(|| bad(format!("position {k}, end {e} is not three numbers")))?;
+        let mut x = [0.0; 3];
+        for (i, n) in c.iter().enumerate() {
+            x[i] = n
+                .as_f64()
+                .filter(|f| f.is_finite())
+                .ok_or_else(|| bad(format!("position {k}, end {e}: {n} is not a finite number")))?;
+        }
+        Ok(DVec3::from_array(x))
+    };
+    let blades = steps
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            let ends = s
+                .as_array()
+                .filter(|e| e.len() == 2)
+                .ok_or_else(|| bad(format!("position {k} is not two points")))?;
+            let blade = [point(&ends[0], k, 0)?, point(&ends[1], k, 1)?];
+            if blade[0] == blade[1] {
+                return Err(bad(format!("position {k}: both ends are the same point")));
+            }
+            Ok(blade)
+        })
+        .collect::<Result<Vec<Blade>, String>>()?;
+    if blades.len() < 2 {
+        return Err(bad(format!(
+            "{} position(s): a path needs two at least",
+            blades.len()
+        )));
+    }
+    Ok(blades)
+}
+
+pub fn run(args: Args) -> CliResult {
+    if let Some(save) = &args.save {
+        parse::model_output(save)?;
+    }
+    let blades = read_path(&args.path)?;
+    let options = match (args.resolution.threshold, args.resolution.budget) {
+        (Some(e), _) => ExtractOptions::threshold(e),
+        (_, Some(n)) => ExtractOptions::FINEST.with_budget(Some(n)),
+        _ => ExtractOptions::FINEST,
+    };
+    let mt = Mt::load(&args.model)?;
+    let report = mt.validate();
+    if !report.is_valid() {
+        return Err(format!(
+            "{} is not a valid model ({report}); nothing written",
+            args.model.display()
+        )
+        .into());
+    }
+    std::fs::create_dir_all(&args.output).map_err(|e| format!("{}: {e}", args.output.display()))?;
+    let mut scalpel = Scalpel::new(mt, blades[0])?;
+    let mut entries: Vec<PvdEntry> = Vec::new();
+    let mut steps: Vec<Value> = Vec::new();
+    let pvd = args.output.join("scalpel.pvd");
+    let write_step = |k: usize, mt: &Mt, entries: &mut Vec<PvdEntry>| -> CliResult {
+        let e = mt.extract(&options)?;
+        let name = format!("step-{k:04}.vtu");
+        write_mesh(args.output.join(&name), &e.mesh)?;
+        entries.push(PvdEntry {
+            timestep: k as f64,
+            part: 0,
+            file: PathBuf::from(name),
+        });
+        write_pvd(&pvd, entries)?;
+        Ok(())
+    };
+    write_step(0, scalpel.mt(), &mut entries)?;
+    let start = Instant::now();
+    for (k, &to) in blades.iter().enumerate().skip(1) {
+        let step = scalpel
+            .step(to)
+            .map_err(|e| format!("step {k}: {e}; steps 0-{} written", k - 1))?;
+        let t_validate = Instant::now();
+        let report = scalpel.mt().validate();
+        let validate_seconds = t_validate.elapsed().as_secs_f64();
+        if !report.is_valid() {
+            return Err(format!(
+                "step {k}: the cut left an invalid model ({report}); steps 0-{} written to {}, \
+                 nothing saved",
+                k - 1,
+                args.output.display()
+            )
+            .into());
+        }
+        write_step(k, scalpel.mt(), &mut entries)?;
+        let components = scalpel.mt().nb_components();
+        if args.json {
+            steps.push(json!({
+                "step": k,
+                "polygons": step.cuts.len(),
+                "tets_cut": step.tets_cut(),
+                "cuts": step.cuts.iter().map(|s| s.to_json()).collect::<Vec<_>>(),
+                "components": components,
+                "seconds": step.seconds(),
+                "seconds_validate": validate_seconds,
+            }));
+        } else {
+            out!(
+                "step {k:<4}  {} polygon(s), {} tets cut, {} component(s), {:.4} s (validate \
+                 {validate_seconds:.3} s)",
+                step.cuts.len(),
+                step.tets_cut(),
+                components,
+                step.seconds()
+            );
+        }
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    let mt = scalpel.into_mt();
+    if let Some(save) = &args.save {
+        mt.save(save)?;
+    }
+    if args.json {
+        out!(
+            "{}",
+            json!({
+                "input": args.model.display().to_string(),
+                "steps": steps,
+                "components": mt.nb_components(),
+                "valid": true,
+                "pvd": pvd.display().to_string(),
+                "saved": args.save.as_ref().map(|p| p.display().to_string()),
+                "seconds": seconds,
+            })
+        );
+        return Ok(());
+    }
+    out!(
+        "scalpel    {} steps, {} component(s), valid after every step; {:.3} s",
+        blades.len() - 1,
+        mt.nb_components(),
+        seconds
+    );
+    out!("wrote      {} ({} meshes)", pvd.display(), entries.len());
+    if let Some(save) = &args.save {
+        out!("saved      {}", save.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,114 @@
+//! Progressive scalpel cuts of an MT (paper §5's interaction, without its time-critical
+//! part): a straight blade moved in time steps, each step cutting every level of the MT
+//! with the area the blade swept since the last step ([`scalpel_sweep`]: one
+//! quadrilateral, or two triangles when the sweep is not planar), so an incision grows
+//! step by step and may end inside the body.
+//!
+//! The MT cut runs with the smallest face-point margin
+//! ([`MIN_FACE_POINT_MARGIN`](super::MIN_FACE_POINT_MARGIN)): each step continues the
+//! last one's crack, whose tips then lie within the contour band of the new polygon (see
+//! [`super::mt_cut`]; with the default margin, tips in the middle of their faces lie
+//! beyond it and the levels disagree).
+//!
+//! # Limits (measured; tests/mtcut_cut.rs and tests/mt_scalpel.rs)
+//!
+//! * A blade moving in its own plane (every step coplanar with the last, cutting through
+//!   the body's depth) keeps every level valid and separates the body when it has crossed
+//!   it.
+//! * A step at an angle to the last (a turning path, a tilting blade) meets the last
+//!   step's crack tips off its plane and breaks the coarser levels; so can a shallow
+//!   incision (blade ending inside the body) after several steps, and a second incision
+//!   meeting the first. Callers should check [`Mt::validate`] after each step (the CLI
+//!   does, and stops there).
+
+use super::mt_cut::{MtCutStats, MtCutter};
+use super::options::{CutError, CutOptions, MIN_FACE_POINT_MARGIN};
+use crate::geom::{DVec3, PolygonError, Tolerance, scalpel_sweep};
+use crate::mt::Mt;
+
+/// A blade position: the segment between two points (the cutting edge).
+pub type Blade = [DVec3; 2];
+
+/// Why a scalpel step failed.
+#[derive(Debug, thiserror::Error)]
+pub enum ScalpelError {
+    #[error("the blade's sweep is not a cutting polygon: {0}")]
+    Sweep(#[from] PolygonError),
+    #[error(transparent)]
+    Cut(#[from] CutError),
+}
+
+/// What one step did: the polygons cut (one or two) and their statistics.
+#[derive(Clone, Debug, Default)]
+pub struct ScalpelStep {
+    pub cuts: Vec<MtCutStats>,
+}
+
+impl ScalpelStep {
+    /// Tets of any level the step replaced.
+    pub fn tets_cut(&self) -> usize {
+        self.cuts.iter().map(|s| s.tets_cut).sum()
+    }
+
+    /// Seconds the step took (its cuts).
+    pub fn seconds(&self) -> f64 {
+        self.cuts.iter().map(|s| s.time.total).sum()
+    }
+}
+
+/// An MT and a blade moving through it (see the [module docs](self)).
+pub struct Scalpel {
+    cutter: MtCutter,
+    blade: Blade,
+    /// Planarity tolerance of a sweep (relative to its size): below it, one quadrilateral.
+    planarity: Tolerance,
+}
+
+impl Scalpel {
+    /// The MT cut options of a scalpel: [`MtCutter::DEFAULT_OPTIONS`] with the smallest
+    /// face-point margin (see the module docs).
+    pub const OPTIONS: CutOptions = CutOptions {
+        face_point_margin: MIN_FACE_POINT_MARGIN,
+        ..MtCutter::DEFAULT_OPTIONS
+    };
+
+    /// A scalpel on `mt` (which should be valid), its blade at `blade`.
+    pub fn new(mt: Mt, blade: Blade) -> Result<Scalpel, ScalpelError> {
+        if let Some(index) = blade.iter().position(|p| !p.is_finite()) {
+            return Err(PolygonError::NonFinite { index }.into());
+        }
+        Ok(Scalpel {
+            cutter: MtCutter::new(mt, Scalpel::OPTIONS)?,
+            blade,
+            planarity: Tolerance { relative: 1e-9 },
+        })
+    }
+
+    /// Moves the blade to `to`, cutting the area it sweeps. A blade that did not move cuts
+    /// nothing. On error the blade stays where it was and so does the MT, except after a
+    /// non-planar sweep whose second triangle failed (the first was cut).
+    pub fn step(&mut self, to: Blade) -> Result<ScalpelStep, ScalpelError> {
+        if to == self.blade {
+            return Ok(ScalpelStep::default());
+        }
+        let polygons = scalpel_sweep(self.blade, to, self.planarity)?;
+        let mut step = ScalpelStep::default();
+        for p in &polygons {
+            step.cuts.push(self.cutter.cut(p)?);
+        }
+        self.blade = to;
+        Ok(step)
+    }
+
+    pub fn blade(&self) -> Blade {
+        self.blade
+    }
+
+    pub fn mt(&self) -> &Mt {
+        self.cutter.mt()
+    }
+
+    pub fn into_mt(self) -> Mt {
+        self.cutter.into_mt()
+    }
+}

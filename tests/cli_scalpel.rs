@@ -1,0 +1,177 @@
+//! `mtcut scalpel MODEL.mt --path PATH.json -o DIR`: a straight blade crossing fandisk in
+//! 12 steps writes 13 valid meshes listed in a .pvd, the body parts at the step the blade
+//! leaves it, and the saved model is valid with two components; bad path files fail with
+//! a message naming the problem; a turning path stops at the step that breaks the model,
+//! keeping the steps before it and saving nothing.
+
+mod cli_support;
+mod common;
+
+use cli_support::{fails, json, ok, read_valid, s};
+use common::{data, scratch};
+use mtcut::cut::Components;
+use mtcut::geom::Aabb;
+use mtcut::mt::Mt;
+use std::path::Path;
+
+/// Blade positions as the path file holds them.
+fn write_path(path: &Path, blades: &[[[f64; 3]; 2]]) {
+    std::fs::write(path, serde_json::to_string(blades).unwrap()).unwrap();
+}
+
+fn fandisk_model(dir: &Path) -> (std::path::PathBuf, Aabb) {
+    let model = dir.join("fandisk.mt");
+    ok(&["build", s(&data("fandisk.node")), "-o", s(&model)]);
+    let b = Aabb::from_points(Mt::load(&model).unwrap().positions());
+    (model, b)
+}
+
+#[test]
+fn a_straight_blade_opens_the_model_step_by_step() {
+    let dir = scratch("cli_scalpel_straight");
+    let (model, b) = fandisk_model(&dir);
+    let (c, d) = (b.center(), b.max - b.min);
+    let blades: Vec<[[f64; 3]; 2]> = (0..=12)
+        .map(|k| {
+            let x = b.min.x - 0.05 * d.x + 1.1 * d.x * k as f64 / 12.0;
+            [
+                [x, c.y + 0.013 * d.y, b.min.z - 0.1 * d.z],
+                [x, c.y - 0.011 * d.y, b.max.z + 0.1 * d.z],
+            ]
+        })
+        .collect();
+    let path = dir.join("path.json");
+    write_path(&path, &blades);
+    let out = dir.join("series");
+    let saved = dir.join("cut.mt");
+    let j = json(&[
+        "scalpel",
+        s(&model),
+        "--path",
+        s(&path),
+        "-o",
+        s(&out),
+        "--save",
+        s(&saved),
+        "--json",
+    ]);
+    let steps = j["steps"].as_array().expect("steps");
+    assert_eq!(steps.len(), 12, "{j}");
+    assert_eq!(j["components"], 2, "{j}");
+    let pvd = std::fs::read_to_string(out.join("scalpel.pvd")).expect("pvd");
+    let mut before = 0;
+    for k in 0..=12 {
+        let name = format!("step-{k:04}.vtu");
+        assert!(pvd.contains(&name), "{name} not listed:\n{pvd}");
+        let mesh = read_valid(&out.join(&name));
+        let parts = Components::of(&mesh).count;
+        // One piece until the blade has crossed the body, two after.
+        assert!(parts >= before && parts <= 2, "step {k}: {parts} pieces");
+        before = parts;
+        if k == 0 {
+            assert_eq!(parts, 1);
+        }
+    }
+    assert_eq!(before, 2, "the blade did not separate the body");
+    let back = Mt::load(&saved).expect("saved model");
+    assert!(back.validate().is_valid());
+    assert_eq!(back.nb_components(), 2);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_path_files_are_refused_by_name() {
+    let dir = scratch("cli_scalpel_bad");
+    let (model, _) = fandisk_model(&dir);
+    let out = dir.join("series");
+    for (name, text, needle) in [
+        ("not-json.json", "[[1,2", "not JSON"),
+        ("object.json", "{\"a\": 1}", "top level is not a list"),
+        ("one.json", "[[[0,0,0],[0,0,1]]]", "needs two at least"),
+        (
+            "short.json",
+            "[[[0,0,0],[0,0,1]], [[0,0],[0,0,1]]]",
+            "position 1, end 0",
+        ),
+        (
+            "text.json",
+            "[[[0,0,0],[0,0,1]], [[0,\"x\",0],[0,0,1]]]",
+            "not a finite number",
+        ),
+        (
+            "same.json",
+            "[[[0,0,0],[0,0,0]], [[1,0,0],[1,0,1]]]",
+            "same point",
+        ),
+    ] {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        fails(
+            &["scalpel", s(&model), "--path", s(&path), "-o", s(&out)],
+            &[needle],
+        );
+    }
+    fails(
+        &[
+            "scalpel",
+            s(&model),
+            "--path",
+            s(&dir.join("missing.json")),
+            "-o",
+            s(&out),
+        ],
+        &["missing.json"],
+    );
+    assert!(!out.exists(), "a refused path wrote outputs");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A path that turns breaks the coarser levels at its fourth step (a known limit of the
+/// MT cut, see `mtcut::cut::scalpel`): the run stops there, with the steps before it
+/// written and listed, and saves nothing.
+#[test]
+fn a_step_that_breaks_the_model_stops_the_run() {
+    let dir = scratch("cli_scalpel_turn");
+    let (model, b) = fandisk_model(&dir);
+    let (c, d) = (b.center(), b.max - b.min);
+    let r = 0.6 * d.x.max(d.y);
+    let (cx, cy) = (b.min.x - 0.1 * d.x, c.y - r);
+    let blades: Vec<[[f64; 3]; 2]> = (0..8)
+        .map(|k| {
+            let a = (90.0 - (-8.0 + 8.0 * k as f64)).to_radians();
+            let (x, y) = (cx + r * a.cos(), cy + r * a.sin());
+            [[x, y, b.min.z - 0.1 * d.z], [x, y, b.max.z + 0.1 * d.z]]
+        })
+        .collect();
+    let path = dir.join("turn.json");
+    write_path(&path, &blades);
+    let out = dir.join("series");
+    let saved = dir.join("never.mt");
+    let err = fails(
+        &[
+            "scalpel",
+            s(&model),
+            "--path",
+            s(&path),
+            "-o",
+            s(&out),
+            "--save",
+            s(&saved),
+        ],
+        &[
+            "step 4",
+            "invalid model",
+            "steps 0-3 written",
+            "nothing saved",
+        ],
+    );
+    assert!(!saved.exists(), "{err}");
+    let pvd = std::fs::read_to_string(out.join("scalpel.pvd")).expect("pvd");
+    for k in 0..=3 {
+        let name = format!("step-{k:04}.vtu");
+        assert!(pvd.contains(&name), "{name} not listed");
+        read_valid(&out.join(&name));
+    }
+    assert!(!pvd.contains("step-0004.vtu"));
+    std::fs::remove_dir_all(&dir).ok();
+}
