@@ -948,20 +948,80 @@ impl MtCutter {
 }
 
 /// [`MtCutter::cracked`] of a loaded or built MT: the fragments whose floor and ceiling form
-/// several parts.
+/// several parts. Most fragments are one piece of tets sharing vertices, which a table by
+/// vertex shows at once; only the others go through [`split_fragment`]. On all cores: it
+/// is a pass over the whole pool, paid each time a cutter is made.
 fn cracked_fragments(mt: &Mt) -> Vec<bool> {
-    let tets: Vec<Tet> = (0..mt.nb_tets())
-        .map(|t| mt.tet(TetId::from_usize(t)))
-        .collect();
+    use rayon::prelude::*;
+    let tets = mt.tets();
+    let nv = mt.nb_vertices();
+    // Large jobs: each starts with a table the size of the vertex pool.
+    let min_len = (mt.nb_fragments() / 16).max(1);
     (0..mt.nb_fragments())
-        .map(|f| {
-            let f = FragmentId::from_usize(f);
-            let floor: Vec<u32> = mt.destroyed_tets(f).map(|t| t.0).collect();
-            let ceiling: Vec<u32> = mt.created_tets(f).map(|t| t.0).collect();
-            let parts = split_fragment(&tets, mt.positions(), &floor, &ceiling);
-            parts.iter().any(|&p| p > 0)
-        })
+        .into_par_iter()
+        .with_min_len(min_len)
+        .map_init(
+            || Pieces {
+                first: vec![0; nv],
+                stamp: vec![0; nv],
+                epoch: 0,
+                parent: Vec::new(),
+            },
+            |pieces, f| {
+                let f = FragmentId::from_usize(f);
+                let floor: Vec<u32> = mt.destroyed_tets(f).map(|t| t.0).collect();
+                let ceiling: Vec<u32> = mt.created_tets(f).map(|t| t.0).collect();
+                if pieces.one_piece(tets, floor.iter().chain(&ceiling)) {
+                    return false;
+                }
+                let parts = split_fragment(tets, mt.positions(), &floor, &ceiling);
+                parts.iter().any(|&p| p > 0)
+            },
+        )
         .collect()
+}
+
+/// Scratch of [`cracked_fragments`]: per vertex, the first tet of the current list holding
+/// it (valid where `stamp` is the current epoch).
+struct Pieces {
+    first: Vec<u32>,
+    stamp: Vec<u32>,
+    epoch: u32,
+    parent: Vec<u32>,
+}
+
+impl Pieces {
+    /// Whether the tets `list` are joined into one piece through shared vertices.
+    fn one_piece<'a>(&mut self, tets: &[Tet], list: impl Iterator<Item = &'a u32>) -> bool {
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.stamp.fill(0);
+            self.epoch = 1;
+        }
+        self.parent.clear();
+        let mut pieces = 0u32;
+        for &t in list {
+            let i = self.parent.len() as u32;
+            self.parent.push(i);
+            pieces += 1;
+            for &v in tets[t as usize].iter().filter(|v| **v != GHOST) {
+                if self.stamp[v.idx()] != self.epoch {
+                    self.stamp[v.idx()] = self.epoch;
+                    self.first[v.idx()] = i;
+                } else {
+                    let (x, y) = (
+                        find(&mut self.parent, self.first[v.idx()]),
+                        find(&mut self.parent, i),
+                    );
+                    if x != y {
+                        self.parent[x.max(y) as usize] = x.min(y);
+                        pieces -= 1;
+                    }
+                }
+            }
+        }
+        pieces <= 1
+    }
 }
 
 /// "Is fragment `b` a successor of `a` (or `a` itself)?" over the DAG before the cut: a
