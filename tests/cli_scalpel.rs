@@ -19,6 +19,28 @@ fn write_path(path: &Path, blades: &[[[f64; 3]; 2]]) {
     std::fs::write(path, serde_json::to_string(blades).unwrap()).unwrap();
 }
 
+/// `mtcut scalpel MODEL --path PATH -o OUT --save SAVED`, then `extra`.
+fn scalpel_args<'a>(
+    model: &'a Path,
+    path: &'a Path,
+    out: &'a Path,
+    saved: &'a Path,
+    extra: &[&'a str],
+) -> Vec<&'a str> {
+    let mut a = vec![
+        "scalpel",
+        s(model),
+        "--path",
+        s(path),
+        "-o",
+        s(out),
+        "--save",
+        s(saved),
+    ];
+    a.extend_from_slice(extra);
+    a
+}
+
 fn fandisk_model(dir: &Path) -> (std::path::PathBuf, Aabb) {
     let model = dir.join("fandisk.mt");
     ok(&["build", s(&data("fandisk.node")), "-o", s(&model)]);
@@ -44,17 +66,7 @@ fn a_straight_blade_opens_the_model_step_by_step() {
     write_path(&path, &blades);
     let out = dir.join("series");
     let saved = dir.join("cut.mt");
-    let j = json(&[
-        "scalpel",
-        s(&model),
-        "--path",
-        s(&path),
-        "-o",
-        s(&out),
-        "--save",
-        s(&saved),
-        "--json",
-    ]);
+    let j = json(&scalpel_args(&model, &path, &out, &saved, &["--json"]));
     let steps = j["steps"].as_array().expect("steps");
     assert_eq!(steps.len(), 12, "{j}");
     assert_eq!(j["components"], 2, "{j}");

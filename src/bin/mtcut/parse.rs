@@ -156,3 +156,18 @@ pub fn model_output(path: &std::path::Path) -> Result<(), String> {
         _ => Ok(()),
     }
 }
+
+/// An `.mt` model, refused unless [`mtcut::mt::Mt::validate`] finds it valid (commands
+/// that write from a model never start from a broken one).
+pub fn valid_model(path: &std::path::Path) -> Result<mtcut::mt::Mt, Box<dyn std::error::Error>> {
+    let mt = mtcut::mt::Mt::load(path)?;
+    let report = mt.validate();
+    if !report.is_valid() {
+        return Err(format!(
+            "{} is not a valid model ({report}); nothing written",
+            path.display()
+        )
+        .into());
+    }
+    Ok(mt)
+}

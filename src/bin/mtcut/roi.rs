@@ -8,7 +8,6 @@ use crate::CliResult;
 use crate::parse::{self, Sphere};
 use mtcut::cut::{RoiRegion, region_of_interest};
 use mtcut::geom::Aabb;
-use mtcut::mt::Mt;
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -51,16 +50,8 @@ pub fn run(args: Args) -> CliResult {
         (None, None) => return Err("give the region: --box or --sphere".into()),
     };
     let t_load = Instant::now();
-    let mt = Mt::load(&args.model)?;
+    let mt = parse::valid_model(&args.model)?;
     let load_seconds = t_load.elapsed().as_secs_f64();
-    let report = mt.validate();
-    if !report.is_valid() {
-        return Err(format!(
-            "{} is not a valid model ({report}); nothing written",
-            args.model.display()
-        )
-        .into());
-    }
     let (sub, stats) = region_of_interest(&mt, &region)
         .map_err(|e| format!("{}: {e}; nothing written", args.model.display()))?;
     let t_write = Instant::now();

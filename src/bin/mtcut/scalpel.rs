@@ -117,15 +117,7 @@ pub fn run(args: Args) -> CliResult {
         (_, Some(n)) => ExtractOptions::FINEST.with_budget(Some(n)),
         _ => ExtractOptions::FINEST,
     };
-    let mt = Mt::load(&args.model)?;
-    let report = mt.validate();
-    if !report.is_valid() {
-        return Err(format!(
-            "{} is not a valid model ({report}); nothing written",
-            args.model.display()
-        )
-        .into());
-    }
+    let mt = parse::valid_model(&args.model)?;
     std::fs::create_dir_all(&args.output).map_err(|e| format!("{}: {e}", args.output.display()))?;
     let mut scalpel = Scalpel::new(mt, blades[0])?;
     let mut entries: Vec<PvdEntry> = Vec::new();
