@@ -60,9 +60,10 @@ impl ScalpelStep {
 pub struct Scalpel {
     cutter: MtCutter,
     blade: Blade,
-    /// Planarity tolerance of a sweep (relative to its size): below it, one quadrilateral.
-    planarity: Tolerance,
 }
+
+/// Planarity tolerance of a sweep (relative to its size): below it, one quadrilateral.
+const SWEEP_PLANARITY: Tolerance = Tolerance { relative: 1e-9 };
 
 impl Scalpel {
     /// The MT cut options of a scalpel: [`MtCutter::DEFAULT_OPTIONS`] with the smallest
@@ -80,7 +81,6 @@ impl Scalpel {
         Ok(Scalpel {
             cutter: MtCutter::new(mt, Scalpel::OPTIONS)?,
             blade,
-            planarity: Tolerance { relative: 1e-9 },
         })
     }
 
@@ -91,7 +91,7 @@ impl Scalpel {
         if to == self.blade {
             return Ok(ScalpelStep::default());
         }
-        let polygons = scalpel_sweep(self.blade, to, self.planarity)?;
+        let polygons = scalpel_sweep(self.blade, to, SWEEP_PLANARITY)?;
         let mut step = ScalpelStep::default();
         for p in &polygons {
             step.cuts.push(self.cutter.cut(p)?);

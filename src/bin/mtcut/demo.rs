@@ -135,13 +135,9 @@ pub fn run(args: Args) -> CliResult {
     // A scalpel opening the model: a blade crossing it in 12 steps, each cutting what it
     // swept (every level), the model checked after each; the current mesh (at the middle
     // budget) after each step is a time series of its own.
-    let mut scalpel_meshes = Vec::new();
+    let current = ExtractOptions::FINEST.with_budget(Some(middle_budget));
     let mut scalpel = Scalpel::new(mt.clone(), demo_blade(&mesh.bbox(), 0))?;
-    scalpel_meshes.push(
-        scalpel
-            .mt()
-            .extract(&ExtractOptions::FINEST.with_budget(Some(middle_budget)))?,
-    );
+    let mut scalpel_meshes = vec![scalpel.mt().extract(&current)?];
     let mut scalpel_seconds = 0.0;
     for k in 1..=SCALPEL_STEPS {
         let step = scalpel.step(demo_blade(&mesh.bbox(), k))?;
@@ -153,11 +149,7 @@ pub fn run(args: Args) -> CliResult {
             )
             .into());
         }
-        scalpel_meshes.push(
-            scalpel
-                .mt()
-                .extract(&ExtractOptions::FINEST.with_budget(Some(middle_budget)))?,
-        );
+        scalpel_meshes.push(scalpel.mt().extract(&current)?);
     }
     let scalpel_components = scalpel.mt().nb_components();
 
