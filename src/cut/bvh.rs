@@ -39,6 +39,8 @@ pub struct TetBvh {
 pub struct QueryOptions<'c> {
     pub parallel: bool,
     pub cache: &'c mut StateCache,
+    /// The classifier's contour band ([`StateClassifier::with_contour_band`]; 0: none).
+    pub contour_band: f64,
 }
 
 /// What a query found: candidate tets with their vertex states, and how many tets it
@@ -63,6 +65,9 @@ struct Query<'a> {
     /// The snapping tolerance: a snapped vertex is within `snap × scale` of the plane,
     /// and (its projection being within that distance of C) within twice that of C's box.
     reach: f64,
+    /// The contour band: vertices on the plane that far (relative to their scale) outside
+    /// C are on the cut too.
+    band: f64,
     /// Rounding slack of the floating-point box tests, at the scene's coordinate scale.
     slack: f64,
 }
@@ -130,6 +135,34 @@ impl TetBvh {
         id
     }
 
+    /// Recomputes every box for new `positions` of the same tets (a deformed mesh: the
+    /// tree's shape, built for the old positions, is kept, so queries stay correct and
+    /// slow down only as far as the deformation scrambles it). Scales are kept.
+    pub fn refit(&mut self, positions: &[DVec3], tets: &[Tet]) {
+        let tet_box =
+            |t: TetId| Aabb::from_points(tets[t.idx()].iter().map(|v| &positions[v.idx()]));
+        // Nodes are stored in depth-first preorder: children after their parent.
+        for i in (0..self.nodes.len()).rev() {
+            let n = self.nodes[i];
+            let bbox = if n.count > 0 {
+                let mut b = Aabb::EMPTY;
+                for k in n.first..n.first + n.count {
+                    let mut t = self.items[k as usize];
+                    while t.is_valid() {
+                        b = b.union(&tet_box(t));
+                        t = self.next[t.idx()];
+                    }
+                }
+                b
+            } else {
+                self.nodes[i + 1]
+                    .bbox
+                    .union(&self.nodes[n.right as usize].bbox)
+            };
+            self.nodes[i].bbox = bbox;
+        }
+    }
+
     /// Makes room for tet slots up to `n` (before [`add_children`](Self::add_children)).
     pub fn reserve_tets(&mut self, n: usize) {
         if self.next.len() < n {
@@ -164,7 +197,11 @@ impl TetBvh {
         snap: Tolerance,
         options: QueryOptions<'_>,
     ) -> Candidates {
-        let QueryOptions { parallel, cache } = options;
+        let QueryOptions {
+            parallel,
+            cache,
+            contour_band,
+        } = options;
         let mut out = Candidates::default();
         if self.nodes.is_empty() {
             return out;
@@ -175,12 +212,14 @@ impl TetBvh {
             positions,
             scales,
             tets,
-            states: StateClassifier::new(polygon, snap, &root.bbox, root.max_scale),
+            states: StateClassifier::new(polygon, snap, &root.bbox, root.max_scale)
+                .with_contour_band(contour_band),
             cbox: polygon.bbox(),
             normal: polygon.normal(),
             abs_normal: polygon.normal().abs(),
             offset: polygon.plane().offset,
             reach: snap.relative,
+            band: contour_band,
             slack: 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element()),
         };
         if parallel {
@@ -197,7 +236,7 @@ impl TetBvh {
     #[inline]
     fn node_may_touch(&self, q: &Query<'_>, n: &Node) -> bool {
         let plane_margin = q.reach * n.max_scale + q.slack;
-        let r = 2.0 * plane_margin;
+        let r = 2.0 * plane_margin + q.band * n.max_scale;
         let b = &n.bbox;
         if b.min.x > q.cbox.max.x + r
             || b.min.y > q.cbox.max.y + r

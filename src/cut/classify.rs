@@ -853,7 +853,7 @@ pub fn origin_positions(positions: &[DVec3], origins: &[VertexOrigin]) -> Vec<DV
 }
 
 /// The position of a new vertex from its origin.
-fn origin_position(positions: &[DVec3], origin: &VertexOrigin) -> DVec3 {
+pub(crate) fn origin_position(positions: &[DVec3], origin: &VertexOrigin) -> DVec3 {
     match *origin {
         VertexOrigin::Edge { a, b, t, .. } => {
             let (p, q) = (positions[a.idx()], positions[b.idx()]);

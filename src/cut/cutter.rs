@@ -55,6 +55,8 @@ pub struct Cutter {
     options: CutOptions,
     cuts_applied: u32,
     build_time: Duration,
+    /// Decide as the MT cut does on its levels (see [`Cutter::for_mt_frontier`]).
+    mt_rules: bool,
 }
 
 impl Cutter {
@@ -65,10 +67,45 @@ impl Cutter {
         Ok(Cutter::prepare(mesh, options))
     }
 
+    /// A cutter for a mesh extracted from an MT (a frontier), deciding as
+    /// [`MtCutter`](super::MtCutter) decides on the same tets: with the MT's vertex `scales`
+    /// (one per vertex, [`MtCutter::vertex_scales`](super::MtCutter::vertex_scales) of
+    /// each vertex's MT vertex: they place face points) and the MT cut's rules for vertices
+    /// on the plane (the contour band and settled plane vertices, [`super::mt_cut`]), so a
+    /// blade swept in steps continues its crack. Options as the MT cut takes them.
+    pub fn for_mt_frontier(
+        mesh: TetMesh,
+        scales: Vec<f64>,
+        options: CutOptions,
+    ) -> Result<Cutter, CutError> {
+        options.check()?;
+        if scales.len() != mesh.nb_vertices() {
+            return Err(CutError::InvalidOption {
+                option: "scales",
+                value: scales.len() as f64,
+                expected: "one scale per vertex",
+            });
+        }
+        if let Some(&bad) = scales.iter().find(|s| !(s.is_finite() && **s >= 0.0)) {
+            return Err(CutError::InvalidOption {
+                option: "scales",
+                value: bad,
+                expected: "finite and non-negative",
+            });
+        }
+        let mut cutter = Cutter::prepare_with(mesh, scales, options);
+        cutter.mt_rules = true;
+        Ok(cutter)
+    }
+
     /// [`new`](Self::new) with options already checked.
-    fn prepare(mut mesh: TetMesh, options: CutOptions) -> Cutter {
-        let start = Instant::now();
+    fn prepare(mesh: TetMesh, options: CutOptions) -> Cutter {
         let scales = vertex_scales(&mesh);
+        Cutter::prepare_with(mesh, scales, options)
+    }
+
+    fn prepare_with(mut mesh: TetMesh, scales: Vec<f64>, options: CutOptions) -> Cutter {
+        let start = Instant::now();
         let bvh = TetBvh::build(mesh.positions(), &scales, mesh.tets());
         let build_time = start.elapsed();
         let n = mesh.nb_tets();
@@ -95,6 +132,7 @@ impl Cutter {
             options,
             cuts_applied,
             build_time,
+            mt_rules: false,
         }
     }
 
@@ -114,6 +152,35 @@ impl Cutter {
     pub fn set_options(&mut self, options: CutOptions) -> Result<(), CutError> {
         options.check()?;
         self.options = options;
+        Ok(())
+    }
+
+    /// Moves the vertices to `positions` (one per vertex: a deformed body), keeping the
+    /// mesh's topology, its vertex scales (so snapping distances stay those of the rest
+    /// shape) and its hierarchy (refitted). Refused, with the mesh unchanged, when the count
+    /// is wrong, a coordinate is not finite, or a tet would be inverted or flat (exact
+    /// orientation): cut tables need positively oriented tets.
+    pub fn set_positions(&mut self, positions: &[DVec3]) -> Result<(), CutError> {
+        use rayon::prelude::*;
+        let expected = self.mesh.nb_vertices();
+        if positions.len() != expected {
+            return Err(CutError::PositionCount {
+                count: positions.len(),
+                expected,
+            });
+        }
+        if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(CutError::NonFinitePosition { vertex });
+        }
+        let inverted = self.mesh.tets().par_iter().position_first(|t| {
+            let [a, b, c, d] = t.map(|v| positions[v.idx()]);
+            crate::geom::orient3d(a, b, c, d) != Sign::Positive
+        });
+        if let Some(tet) = inverted {
+            return Err(CutError::InvertedTet { tet });
+        }
+        self.mesh.positions_mut().copy_from_slice(positions);
+        self.bvh.refit(self.mesh.positions(), self.mesh.tets());
         Ok(())
     }
 
@@ -170,10 +237,28 @@ impl Cutter {
             QueryOptions {
                 parallel: n_tets / 32 >= opts.parallel_threshold,
                 cache: &mut self.state_cache,
+                contour_band: if self.mt_rules {
+                    super::mt_cut::contour_band(&opts)
+                } else {
+                    0.0
+                },
             },
         );
-        let cand = &found.tets;
-        let mut states = found.states.clone();
+        let mut cand = found.tets;
+        let mut states = found.states;
+        if self.mt_rules {
+            let mesh = &self.mesh;
+            super::mt_cut::settle_plane_vertices(
+                polygon,
+                opts,
+                mesh.positions(),
+                &self.scales,
+                &mut cand,
+                &mut states,
+                |t| mesh.tet(t),
+            );
+        }
+        let cand = &cand;
         let tets: Vec<Tet> = cand.iter().map(|t| self.mesh.tet(*t)).collect();
         times.query = start.elapsed().as_secs_f64();
 

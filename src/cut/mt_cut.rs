@@ -238,6 +238,9 @@ pub struct MtCutter {
     /// fragment is involved in every later cut: the cut that separates the body may not
     /// touch it.
     cracked: Vec<bool>,
+    /// Where each vertex the last cut appended comes from (see
+    /// [`MtCutter::last_origins`]).
+    last_origins: Vec<VertexOrigin>,
 }
 
 /// Largest `snap` an MT cut accepts (see the module docs, "Limits").
@@ -322,6 +325,7 @@ impl MtCutter {
             scratch: CutScratch::new(),
             options,
             cracked,
+            last_origins: Vec::new(),
         })
     }
 
@@ -345,10 +349,46 @@ impl MtCutter {
         &self.scales
     }
 
+    /// The vertices the last cut appended to the pool, in order from the pool's vertex
+    /// count before it: each a linear combination of older vertices (cut points, face
+    /// points, copies). The deformable cut (paper §5, [`super::live`]) places them in the
+    /// deformed space by the same combinations.
+    pub fn last_origins(&self) -> &[VertexOrigin] {
+        &self.last_origins
+    }
+
     /// Cuts every level of the MT with `polygon` and updates the DAG (see the
     /// [module docs](self)). The cut is planned in full before the MT changes.
     pub fn cut(&mut self, polygon: &CutPolygon) -> Result<MtCutStats, CutError> {
-        self.cut_in_order(polygon, None)
+        self.cut_with(polygon, None, None)
+    }
+
+    /// [`cut`](Self::cut) of the MT as it lies deformed: `positions` gives every pool
+    /// vertex a position (a deformed body, paper §5) and `polygon` is given in that space.
+    /// Every decision of the cut (vertex sides, snapping, where each edge and face is cut,
+    /// as parameters and weights) is made at those positions; the new vertices are placed
+    /// by the same parameters and weights between the vertices' own (rest) positions. Each
+    /// tet is cut by one plane in the deformed space, which in rest space is the plane
+    /// pulled back through the tet's own affine map: levels stay consistent (an edge's
+    /// cut point is shared by every tet of every level through it), and where `positions`
+    /// equal the rest positions the cut is exactly [`cut`](Self::cut). Refused
+    /// ([`CutError::DeformationFolds`]) when `positions` invert a tet the cut would touch.
+    pub fn cut_deformed(
+        &mut self,
+        polygon: &CutPolygon,
+        positions: &[DVec3],
+    ) -> Result<MtCutStats, CutError> {
+        let expected = self.mt().nb_vertices();
+        if positions.len() != expected {
+            return Err(CutError::PositionCount {
+                count: positions.len(),
+                expected,
+            });
+        }
+        if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(CutError::NonFinitePosition { vertex });
+        }
+        self.cut_with(polygon, None, Some(positions))
     }
 
     /// [`cut`](Self::cut), processing the involved fragments of step 3 in the order of
@@ -358,6 +398,17 @@ impl MtCutter {
         polygon: &CutPolygon,
         key: Option<&dyn Fn(FragmentId) -> u64>,
     ) -> Result<MtCutStats, CutError> {
+        self.cut_with(polygon, key, None)
+    }
+
+    /// The cut, in fragment order `key`, deciding at `deformed` positions when given
+    /// (see [`cut_deformed`](Self::cut_deformed)).
+    fn cut_with(
+        &mut self,
+        polygon: &CutPolygon,
+        key: Option<&dyn Fn(FragmentId) -> u64>,
+        deformed: Option<&[DVec3]>,
+    ) -> Result<MtCutStats, CutError> {
         let start = Instant::now();
         let opts = self.options;
         let mut stats = MtCutStats::default();
@@ -366,17 +417,18 @@ impl MtCutter {
             .as_ref()
             .expect("MtCutter holds its MT between cuts");
         let nv = mt.nb_vertices();
-        let positions = mt.positions();
+        // Where the cut's decisions are made: rest positions, or the deformed ones (whose
+        // bounds are not the fragments' boxes: those are not used then).
+        let positions = deformed.unwrap_or(mt.positions());
+        let bounds = match deformed {
+            Some(p) => Aabb::from_points(p),
+            None => self.bounds,
+        };
 
         // Step 1: fragments by box, then the tets they create by vertex states.
-        let classifier = StateClassifier::new(polygon, opts.snap, &self.bounds, self.max_scale)
+        let classifier = StateClassifier::new(polygon, opts.snap, &bounds, self.max_scale)
             .with_contour_band(contour_band(&opts));
-        let coord = self
-            .bounds
-            .min
-            .abs()
-            .max(self.bounds.max.abs())
-            .max_element();
+        let coord = bounds.min.abs().max(self.bounds.max.abs()).max_element();
         let slack = 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element());
         let margin = (2.0 * opts.snap.relative + contour_band(&opts)) * self.max_scale + slack;
         let cbox = polygon.bbox();
@@ -398,7 +450,9 @@ impl MtCutter {
         let mut states: Vec<[u8; 4]> = Vec::new();
         for f in 0..mt.nb_fragments() {
             let f = FragmentId::from_usize(f);
-            if mt.fragment_kind(f) == FragmentKind::Drain || !box_meets(&mt.fragment_bbox(f)) {
+            if mt.fragment_kind(f) == FragmentKind::Drain
+                || (deformed.is_none() && !box_meets(&mt.fragment_bbox(f)))
+            {
                 continue;
             }
             for t in mt.created_tets(f) {
@@ -426,6 +480,17 @@ impl MtCutter {
             |t| mt.tet(t),
         );
         let tets: Vec<Tet> = cand.iter().map(|&t| mt.tet(t)).collect();
+        if deformed.is_some() {
+            // The deformed positions place each tet by its vertices; a tet they fold has no
+            // plane section the tables could make at rest.
+            let folded = tets.iter().position(|t| {
+                let [a, b, c, d] = t.map(|v| positions[v.idx()]);
+                crate::geom::orient3d(a, b, c, d) != crate::geom::Sign::Positive
+            });
+            if let Some(k) = folded {
+                return Err(CutError::DeformationFolds { tet: cand[k].idx() });
+            }
+        }
         stats.tets_candidate = cand.len();
         stats.time.query = start.elapsed().as_secs_f64();
 
@@ -941,6 +1006,9 @@ impl MtCutter {
             .unwrap_or_else(|e| panic!("the MT cut left an inconsistent store: {e}"));
         stats.components = mt.nb_components();
         self.mt = Some(mt);
+        self.last_origins = origins;
+        self.last_origins
+            .extend(copies.iter().map(|&of| VertexOrigin::Copy { of }));
         stats.time.dag = t_dag.elapsed().as_secs_f64();
         stats.time.total = start.elapsed().as_secs_f64();
         Ok(stats)
@@ -1071,7 +1139,7 @@ impl Reach {
 
 /// The contour band of an MT cut ([`StateClassifier::with_contour_band`]): the face-point
 /// margin, at most 5% of a vertex's scale.
-fn contour_band(opts: &CutOptions) -> f64 {
+pub(crate) fn contour_band(opts: &CutOptions) -> f64 {
     opts.face_point_margin.min(0.05)
 }
 
@@ -1089,7 +1157,7 @@ fn contour_band(opts: &CutOptions) -> f64 {
 /// the same states there, and no edge between two of them is taken for crossed when
 /// their exact sides agree. Tets the new states leave neither straddling nor touching the
 /// cut are dropped from the candidates.
-fn settle_plane_vertices(
+pub(crate) fn settle_plane_vertices(
     polygon: &CutPolygon,
     opts: CutOptions,
     positions: &[DVec3],

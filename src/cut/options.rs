@@ -158,4 +158,12 @@ pub enum CutError {
          first"
     )]
     TooLarge { max: u32 },
+    #[error("{count} positions given for a mesh of {expected} vertices")]
+    PositionCount { count: usize, expected: usize },
+    #[error("position of vertex {vertex} is not finite")]
+    NonFinitePosition { vertex: usize },
+    #[error("tet {tet} would be inverted or flat at the new positions")]
+    InvertedTet { tet: usize },
+    #[error("the deformed positions fold tet {tet} of the MT, which the cut meets")]
+    DeformationFolds { tet: usize },
 }

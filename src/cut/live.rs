@@ -1,0 +1,693 @@
+//! Time-critical cutting of a deformable body (paper §5).
+//!
+//! A simulation works on one mesh extracted from the MT — the *current mesh* — whose
+//! vertices it moves every time step. [`LiveMt`] keeps that mesh, at the positions the host
+//! sets ([`LiveMt::set_positions`]), next to the MT, which stays in the rest shape. A cut
+//! ([`LiveMt::cut`]) is given in the current (deformed) space and runs in two parts:
+//!
+//! 1. **Frontier first.** Only the current mesh is cut, at its current positions, by the
+//!    plain-mesh engine ([`Cutter`]: the hierarchy finds the tets, cost in proportion to
+//!    them). The call returns with the current mesh updated. Each new vertex is a linear
+//!    combination of older ones (the cut surface CS of the paper: edge points by their
+//!    parameter, face points by their weights, copies), so its rest position follows from
+//!    the same coefficients.
+//! 2. **The rest of the MT, later.** The cut is queued, with the deformation it was made
+//!    in (the current mesh's rest and current positions, snapshotted only when they are
+//!    about to change while the cut waits). [`LiveMt::process_pending`] cuts the MT with
+//!    it: every pool vertex is placed in the space the cut was given in (vertices of the
+//!    current mesh at their current positions, the others mapped through the current tet
+//!    containing them in rest space) and [`MtCutter::cut_deformed`] makes every decision
+//!    there, placing new vertices at rest by the same parameters. Each tet of each level
+//!    is cut by one plane in that space — CS pulled back to rest space through the tet's
+//!    own affine map — so the levels stay consistent, and the tets of the current
+//!    frontier are cut exactly as the first part cut them. An undeformed body needs no
+//!    mapping: the MT is cut by the polygon itself, as [`MtCutter::cut`] would.
+//!
+//! After each queued cut the current mesh's new vertices are matched to the MT's (by the
+//! rest positions of the tets holding them) and every current tet is checked to be a tet
+//! of the MT: the current mesh *maps back exactly*, and [`LiveMt::mt_vertex_ids`] names the
+//! MT vertex of each current vertex again. Where the two cuts decided differently (they
+//! can only where vertices lie on the cut's plane: the MT cut decides there over all levels,
+//! see [`super::mt_cut`]), the current mesh is replaced, once the queue is empty, by the
+//! MT's extraction at the same resolution, the host's positions carried over by MT vertex,
+//! and the report says so ([`PendingReport::remeshed`]).
+//!
+//! While cuts are pending the resolution cannot change ([`LiveMt::set_resolution`] refuses,
+//! naming the pending cuts), as the paper requires; the current mesh stays usable, and can
+//! be moved and cut again.
+//!
+//! # Limits
+//!
+//! * A queued cut is processed whole: [`process_pending`](LiveMt::process_pending) checks
+//!   its budget between cuts, so it may overrun by one cut (the DAG update of a cut is one
+//!   step over all its fragments, [`super::mt_cut`]).
+//! * Vertices that a resolution change brings in (not in the current mesh before) are
+//!   placed through the deformation of the current tet containing them in rest space; the
+//!   host's own state (velocities, stresses) for them must be interpolated by the host,
+//!   which [`LiveMt::mt_vertex_ids`] lets it do.
+
+use super::classify::{VertexOrigin, origin_position, origin_positions};
+use super::cutter::Cutter;
+use super::mt_cut::{MtCutStats, MtCutter};
+use super::options::{CutError, CutOptions};
+use super::report::CutStats;
+use crate::geom::{Aabb, CutPolygon, DVec3, PolygonError};
+use crate::mesh::{Tet, TetMesh, VertexId};
+use crate::mt::{ExtractError, ExtractOptions, Mt};
+use std::collections::{HashMap, VecDeque};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Why a live operation was refused (nothing changed).
+#[derive(Debug, thiserror::Error)]
+pub enum LiveError {
+    #[error(transparent)]
+    Cut(#[from] CutError),
+    #[error(transparent)]
+    Extract(#[from] ExtractError),
+    #[error("the cut mapped to rest space is not a cutting polygon: {0}")]
+    Polygon(#[from] PolygonError),
+    #[error(
+        "{cuts} cut(s) are still pending: process them (process_pending) before changing \
+         the resolution"
+    )]
+    Pending { cuts: usize },
+}
+
+/// How much queued work [`LiveMt::process_pending`] may do.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PendingBudget {
+    /// Start no further cut once this many fragments have been processed.
+    Fragments(usize),
+    /// Start no further cut once this much time has passed.
+    Time(Duration),
+    /// Everything queued.
+    All,
+}
+
+/// What [`LiveMt::process_pending`] did.
+#[derive(Clone, Debug, Default)]
+pub struct PendingReport {
+    /// The MT cuts made, in order.
+    pub cuts: Vec<MtCutStats>,
+    /// Fragments they involved.
+    pub fragments: usize,
+    /// Cuts still queued.
+    pub cuts_left: usize,
+    /// The current mesh was replaced by the MT's extraction (its vertex and tet numbering
+    /// changed; positions carried over by MT vertex): see the module docs.
+    pub remeshed: bool,
+    /// Cuts whose deformation folded a tet of the MT they meet, made at rest instead with
+    /// the polygon mapped by the affine map closest to the deformation around it (their
+    /// frontier cut then does not map back: the current mesh is replaced).
+    pub folded: usize,
+    pub seconds: f64,
+}
+
+/// What the frontier-first part of a cut did.
+#[derive(Clone, Debug)]
+pub struct LiveCut {
+    /// The cut of the current mesh.
+    pub stats: CutStats,
+    /// Cuts queued for the rest of the MT, this one included.
+    pub pending: usize,
+    /// Time of the whole call (the current mesh's cut and the bookkeeping).
+    pub seconds: f64,
+}
+
+/// The current mesh as a queued cut saw it: how rest space mapped to the space its polygon
+/// was given in.
+struct Deformation {
+    tets: Vec<Tet>,
+    rest: Vec<DVec3>,
+    current: Vec<DVec3>,
+}
+
+enum Frame {
+    /// Rest space (the body was undeformed).
+    Rest,
+    /// The current mesh as it is now (snapshotted before it changes).
+    Now,
+    Snapshot(Arc<Deformation>),
+}
+
+struct PendingCut {
+    polygon: CutPolygon,
+    frame: Frame,
+    /// The positions' epoch the cut was made in.
+    epoch: u64,
+}
+
+/// An MT with a current mesh that a simulation deforms and cuts (see the [module
+/// docs](self)).
+pub struct LiveMt {
+    cutter: MtCutter,
+    resolution: ExtractOptions,
+    current: Cutter,
+    rest: Vec<DVec3>,
+    /// MT vertex of each current vertex; [`VertexId::INVALID`] while its cut is pending.
+    mt_vertex: Vec<VertexId>,
+    /// Some current position differs from its rest position.
+    deformed: bool,
+    pending: VecDeque<PendingCut>,
+    /// A queued cut was decided differently on the MT: replace the current mesh once the
+    /// queue is empty.
+    remesh_due: bool,
+    /// Per MT vertex made by a cut of this model: the combination it was made as (indexed
+    /// from `first_cut_vertex`).
+    cut_origins: Vec<VertexOrigin>,
+    first_cut_vertex: usize,
+    /// Incremented by every change of positions.
+    epoch: u64,
+    /// The pool placed for the last deformed cut, and its epoch: later cuts of the same
+    /// epoch extend it rather than place the pool again, so every vertex stays exactly
+    /// where the earlier cuts saw it (a blade continuing a crack meets its tips where they
+    /// were made).
+    placement: Option<(u64, Vec<DVec3>)>,
+}
+
+impl LiveMt {
+    /// A live model on `mt` (which should be valid), its current mesh extracted at
+    /// `resolution` and at rest, cut with `options` (an MT cut's: see [`MtCutter::new`]).
+    pub fn new(
+        mt: Mt,
+        resolution: &ExtractOptions,
+        options: CutOptions,
+    ) -> Result<LiveMt, LiveError> {
+        let e = mt.extract(resolution)?;
+        let cutter = MtCutter::new(mt, options)?;
+        let rest = e.mesh.positions().to_vec();
+        let current = current_cutter(&cutter, e.mesh, &e.vertex_ids)?;
+        let first_cut_vertex = cutter.mt().nb_vertices();
+        Ok(LiveMt {
+            cut_origins: Vec::new(),
+            first_cut_vertex,
+            epoch: 0,
+            placement: None,
+            cutter,
+            resolution: *resolution,
+            current,
+            rest,
+            mt_vertex: e.vertex_ids,
+            deformed: false,
+            pending: VecDeque::new(),
+            remesh_due: false,
+        })
+    }
+
+    /// The MT, in rest space, with every cut processed so far.
+    pub fn mt(&self) -> &Mt {
+        self.cutter.mt()
+    }
+
+    /// The current mesh, at the current positions.
+    pub fn mesh(&self) -> &TetMesh {
+        self.current.mesh()
+    }
+
+    /// Rest position of each current vertex.
+    pub fn rest_positions(&self) -> &[DVec3] {
+        &self.rest
+    }
+
+    /// MT vertex of each current vertex ([`VertexId::INVALID`] for vertices made by a cut
+    /// still pending).
+    pub fn mt_vertex_ids(&self) -> &[VertexId] {
+        &self.mt_vertex
+    }
+
+    pub fn resolution(&self) -> &ExtractOptions {
+        &self.resolution
+    }
+
+    /// Cuts queued for the rest of the MT.
+    pub fn pending_cuts(&self) -> usize {
+        self.pending.len()
+    }
+
+    /// Sets the current (deformed) position of every current vertex. Refused, with
+    /// nothing changed, when the count is wrong, a coordinate is not finite or a tet would
+    /// be inverted or flat.
+    pub fn set_positions(&mut self, positions: &[DVec3]) -> Result<(), LiveError> {
+        // Validates before anything changes; the snapshot copies the old positions.
+        if positions.len() != self.rest.len() {
+            return Err(CutError::PositionCount {
+                count: positions.len(),
+                expected: self.rest.len(),
+            }
+            .into());
+        }
+        self.freeze_pending();
+        self.current.set_positions(positions)?;
+        self.epoch += 1;
+        self.deformed = positions != self.rest.as_slice();
+        Ok(())
+    }
+
+    /// The frontier-first cut (see the [module docs](self)): cuts the current mesh with
+    /// `polygon`, given in the current space, queues the rest of the MT and returns.
+    pub fn cut(&mut self, polygon: &CutPolygon) -> Result<LiveCut, LiveError> {
+        let start = Instant::now();
+        self.freeze_pending();
+        let n = self.rest.len();
+        let r = self.current.cut(polygon)?;
+        let added = origin_positions(&self.rest, &r.origins);
+        debug_assert_eq!(n + added.len(), self.current.mesh().nb_vertices());
+        self.rest.extend(added);
+        self.mt_vertex.resize(self.rest.len(), VertexId::INVALID);
+        self.pending.push_back(PendingCut {
+            polygon: polygon.clone(),
+            frame: if self.deformed {
+                Frame::Now
+            } else {
+                Frame::Rest
+            },
+            epoch: self.epoch,
+        });
+        Ok(LiveCut {
+            stats: r.stats,
+            pending: self.pending.len(),
+            seconds: start.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// Cuts the MT with queued cuts, oldest first, while `budget` lasts (checked before
+    /// each cut: see the module docs' limits).
+    pub fn process_pending(&mut self, budget: PendingBudget) -> Result<PendingReport, LiveError> {
+        let start = Instant::now();
+        let mut report = PendingReport::default();
+        while let Some(front) = self.pending.front() {
+            let spent = match budget {
+                PendingBudget::Fragments(n) => report.fragments >= n,
+                PendingBudget::Time(d) => start.elapsed() >= d,
+                PendingBudget::All => false,
+            };
+            if spent {
+                break;
+            }
+            let stats = match &front.frame {
+                Frame::Rest => self.cutter.cut(&front.polygon)?,
+                frame => {
+                    let now;
+                    let d = match frame {
+                        Frame::Snapshot(d) => d.as_ref(),
+                        _ => {
+                            now = self.snapshot();
+                            &now
+                        }
+                    };
+                    let placed = match self.placement.take() {
+                        Some((e, mut placed)) if e == front.epoch => {
+                            self.extend_placement(&mut placed);
+                            placed
+                        }
+                        _ => self.place_pool(d),
+                    };
+                    let made = match self.cutter.cut_deformed(&front.polygon, &placed) {
+                        Err(CutError::DeformationFolds { .. }) => {
+                            report.folded += 1;
+                            self.remesh_due = true;
+                            self.cutter.cut(&rest_polygon(&front.polygon, d)?)?
+                        }
+                        r => r?,
+                    };
+                    self.placement = Some((front.epoch, placed));
+                    made
+                }
+            };
+            self.pending.pop_front();
+            self.cut_origins
+                .extend_from_slice(self.cutter.last_origins());
+            if let Some((_, placed)) = &mut self.placement {
+                let mut p = std::mem::take(placed);
+                self.extend_placement(&mut p);
+                self.placement.as_mut().expect("just seen").1 = p;
+            }
+            report.fragments += stats.fragments_involved;
+            report.cuts.push(stats);
+            if !self.remesh_due && !self.resolve()? {
+                self.remesh_due = true;
+            }
+        }
+        if self.pending.is_empty() && self.remesh_due {
+            self.remesh()?;
+            self.remesh_due = false;
+            report.remeshed = true;
+        }
+        report.cuts_left = self.pending.len();
+        report.seconds = start.elapsed().as_secs_f64();
+        Ok(report)
+    }
+
+    /// Extracts the current mesh at `resolution` (refused while cuts are pending), its
+    /// vertices at the positions the current deformation gives them (see the module docs).
+    pub fn set_resolution(&mut self, resolution: &ExtractOptions) -> Result<(), LiveError> {
+        if !self.pending.is_empty() {
+            return Err(LiveError::Pending {
+                cuts: self.pending.len(),
+            });
+        }
+        resolution.check()?;
+        self.resolution = *resolution;
+        self.remesh()
+    }
+
+    /// The MT, after processing every queued cut.
+    pub fn into_mt(mut self) -> Result<Mt, LiveError> {
+        self.process_pending(PendingBudget::All)?;
+        Ok(self.cutter.into_mt())
+    }
+
+    /// Before the current mesh changes: queued cuts made in it take a copy of it.
+    fn freeze_pending(&mut self) {
+        if !self.pending.iter().any(|p| matches!(p.frame, Frame::Now)) {
+            return;
+        }
+        let snapshot = Arc::new(self.snapshot());
+        for p in self.pending.iter_mut() {
+            if matches!(p.frame, Frame::Now) {
+                p.frame = Frame::Snapshot(snapshot.clone());
+            }
+        }
+    }
+
+    /// The current mesh as it is, with its rest positions.
+    fn snapshot(&self) -> Deformation {
+        Deformation {
+            tets: self.current.mesh().tets().to_vec(),
+            rest: self.rest.clone(),
+            current: self.current.mesh().positions().to_vec(),
+        }
+    }
+
+    /// Every pool vertex placed in the space of `d`'s current positions (see the module
+    /// docs): vertices of the current mesh exactly where the host put them; vertices made
+    /// by earlier cuts of this model by the combinations they were made as, so an earlier
+    /// crack on every level lies where those cuts put it in this space (a blade continuing
+    /// it meets its tips on its contour, as at rest); the others by the current tet holding
+    /// them at rest.
+    fn place_pool(&self, d: &Deformation) -> Vec<DVec3> {
+        let mt = self.cutter.mt();
+        let mut host: Vec<Option<DVec3>> = vec![None; mt.nb_vertices()];
+        for (i, &v) in self.mt_vertex.iter().enumerate().take(d.current.len()) {
+            if v.is_valid() && d.rest[i] == mt.position(v) {
+                host[v.idx()] = Some(d.current[i]);
+            }
+        }
+        let locator = Locator::new(&d.rest, &d.tets);
+        let mut placed: Vec<DVec3> = Vec::with_capacity(mt.nb_vertices());
+        for (v, h) in host.iter().enumerate() {
+            let p = match (h, v.checked_sub(self.first_cut_vertex)) {
+                (Some(p), _) => *p,
+                (None, Some(k)) => origin_position(&placed, &self.cut_origins[k]),
+                (None, None) => locator.map(mt.positions()[v], &d.current),
+            };
+            placed.push(p);
+        }
+        placed
+    }
+
+    /// Places the pool's vertices after those of `placed` (all made by cuts of this model)
+    /// by the combinations they were made as.
+    fn extend_placement(&self, placed: &mut Vec<DVec3>) {
+        for v in placed.len()..self.cutter.mt().nb_vertices() {
+            let o = &self.cut_origins[v - self.first_cut_vertex];
+            let p = origin_position(placed, o);
+            placed.push(p);
+        }
+    }
+
+    /// Names the MT vertex of every current vertex after a queued cut: the MT's extraction
+    /// at the live resolution must hold exactly the current tets (matched by the rest
+    /// positions of their vertices: no two tets of a valid mesh have the same four), each
+    /// current vertex then being the extraction's vertex at its place in the matched tets.
+    /// False (ids unchanged) when the current mesh does not map back exactly.
+    fn resolve(&mut self) -> Result<bool, LiveError> {
+        let e = self.cutter.mt().extract(&self.resolution)?;
+        let tets = self.current.mesh().tets();
+        if e.mesh.nb_tets() != tets.len() {
+            return Ok(false);
+        }
+        let bits = |p: DVec3| p.to_array().map(f64::to_bits);
+        let key = |ps: [DVec3; 4]| {
+            let mut k = ps.map(bits);
+            k.sort_unstable();
+            k
+        };
+        let at = e.mesh.positions();
+        let by_key: HashMap<[[u64; 3]; 4], usize> = e
+            .mesh
+            .tets()
+            .iter()
+            .enumerate()
+            .map(|(i, t)| (key(t.map(|v| at[v.idx()])), i))
+            .collect();
+        let mut ids = vec![VertexId::INVALID; self.rest.len()];
+        for tet in tets {
+            let Some(&found) = by_key.get(&key(tet.map(|v| self.rest[v.idx()]))) else {
+                return Ok(false);
+            };
+            let found = e.mesh.tets()[found];
+            for &v in tet {
+                let Some(&w) = found.iter().find(|w| at[w.idx()] == self.rest[v.idx()]) else {
+                    return Ok(false);
+                };
+                let (id, w) = (&mut ids[v.idx()], e.vertex_ids[w.idx()]);
+                if id.is_valid() && *id != w {
+                    return Ok(false);
+                }
+                *id = w;
+            }
+        }
+        if ids.iter().any(|v| !v.is_valid()) {
+            return Ok(false);
+        }
+        self.mt_vertex = ids;
+        Ok(true)
+    }
+
+    /// Replaces the current mesh by the MT's extraction at the current resolution, each
+    /// vertex at its current position (by MT vertex) or placed through the current
+    /// deformation.
+    fn remesh(&mut self) -> Result<(), LiveError> {
+        let e = self.cutter.mt().extract(&self.resolution)?;
+        let mut current: HashMap<VertexId, DVec3> = HashMap::new();
+        for (i, &v) in self.mt_vertex.iter().enumerate() {
+            if v.is_valid() {
+                current.insert(v, self.current.mesh().position(VertexId::from_usize(i)));
+            }
+        }
+        let locator = Locator::new(&self.rest, self.current.mesh().tets());
+        let positions: Vec<DVec3> = e
+            .vertex_ids
+            .iter()
+            .zip(e.mesh.positions())
+            .map(|(v, &p)| {
+                current
+                    .get(v)
+                    .copied()
+                    .unwrap_or_else(|| locator.map(p, self.current.mesh().positions()))
+            })
+            .collect();
+        let rest = e.mesh.positions().to_vec();
+        let mut cutter = current_cutter(&self.cutter, e.mesh, &e.vertex_ids)?;
+        // A deformation placing some new vertex badly (inverted tets) leaves the mesh at
+        // rest: the host sets positions again.
+        let deformed = positions != rest && cutter.set_positions(&positions).is_ok();
+        self.current = cutter;
+        self.rest = rest;
+        self.mt_vertex = e.vertex_ids;
+        self.deformed = deformed;
+        // The vertices new to the current mesh were placed here, not by earlier placements.
+        self.epoch += 1;
+        Ok(())
+    }
+}
+
+/// The cutter of a current mesh extracted from `mt`'s MT (MT vertices `ids`): with the MT's
+/// options and vertex scales, so it decides as the MT cut decides on those tets.
+fn current_cutter(mt: &MtCutter, mesh: TetMesh, ids: &[VertexId]) -> Result<Cutter, CutError> {
+    let scales = ids.iter().map(|v| mt.vertex_scales()[v.idx()]).collect();
+    // Components are the MT's business (`Mt::nb_components`): counting them on every
+    // frontier-first cut would cost a pass over the current mesh.
+    let options = mt.options().with_count_components(false);
+    Cutter::for_mt_frontier(mesh, scales, options)
+}
+
+/// `polygon` (given in `d`'s current space) mapped to rest space by the affine map that
+/// best fits (least squares) the current→rest map of the current vertices around it (those
+/// in its box grown by a tenth of its size; all of them if fewer than four).
+fn rest_polygon(polygon: &CutPolygon, d: &Deformation) -> Result<CutPolygon, LiveError> {
+    use glam::{DMat4, DVec4};
+    let b = polygon.bbox();
+    let grow = DVec3::splat(0.1 * (b.max - b.min).length());
+    let near = |p: &DVec3| p.cmpge(b.min - grow).all() && p.cmple(b.max + grow).all();
+    let mut pairs: Vec<(DVec3, DVec3)> = d
+        .current
+        .iter()
+        .zip(&d.rest)
+        .filter(|(c, _)| near(c))
+        .map(|(c, r)| (*c, *r))
+        .collect();
+    if pairs.len() < 4 {
+        pairs = d
+            .current
+            .iter()
+            .copied()
+            .zip(d.rest.iter().copied())
+            .collect();
+    }
+    // Normal equations of rest = M [current; 1], centred for conditioning.
+    let n = pairs.len().max(1) as f64;
+    let (cc, rc) = pairs
+        .iter()
+        .fold((DVec3::ZERO, DVec3::ZERO), |(a, b), (c, r)| {
+            (a + *c, b + *r)
+        });
+    let (cc, rc) = (cc / n, rc / n);
+    let mut xtx = DMat4::ZERO;
+    let mut xty = [DVec4::ZERO; 3];
+    for (c, r) in &pairs {
+        let x = (*c - cc).extend(1.0);
+        for i in 0..4 {
+            *xtx.col_mut(i) += x * x[i];
+        }
+        for k in 0..3 {
+            xty[k] += x * (r[k] - rc[k]);
+        }
+    }
+    let map: Box<dyn Fn(DVec3) -> DVec3> = if xtx.determinant().abs() > 1e-30 {
+        let inv = xtx.inverse();
+        let rows = xty.map(|y| inv * y);
+        Box::new(move |p: DVec3| {
+            let x = (p - cc).extend(1.0);
+            rc + DVec3::new(rows[0].dot(x), rows[1].dot(x), rows[2].dot(x))
+        })
+    } else {
+        Box::new(move |p: DVec3| p - cc + rc)
+    };
+    let mapped: Vec<DVec3> = polygon.points().iter().map(|&p| map(p)).collect();
+    Ok(CutPolygon::new(&mapped)?)
+}
+
+/// Point location among tets at rest, through a uniform grid: maps a rest point by the
+/// displacement of the tet holding it (or, outside every tet, of the nearest by barycentric
+/// coordinates among the tets of the nearest non-empty cells).
+struct Locator<'a> {
+    rest: &'a [DVec3],
+    tets: &'a [Tet],
+    bounds: Aabb,
+    cell: f64,
+    dims: [usize; 3],
+    cells: Vec<Vec<u32>>,
+}
+
+impl<'a> Locator<'a> {
+    fn new(rest: &'a [DVec3], tets: &'a [Tet]) -> Locator<'a> {
+        let bounds = Aabb::from_points(tets.iter().flatten().map(|v| &rest[v.idx()]));
+        let extent = (bounds.max - bounds.min).max(DVec3::splat(f64::MIN_POSITIVE));
+        // About two tets per cell.
+        let cell = (extent.x * extent.y * extent.z / (tets.len().max(1) as f64 / 2.0))
+            .cbrt()
+            .max(extent.max_element() / 256.0);
+        let dims = (extent / cell)
+            .ceil()
+            .as_uvec3()
+            .max(glam::UVec3::ONE)
+            .to_array();
+        let dims = dims.map(|d| d as usize);
+        let mut cells: Vec<Vec<u32>> = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
+        let mut loc = Locator {
+            rest,
+            tets,
+            bounds,
+            cell,
+            dims,
+            cells: Vec::new(),
+        };
+        for (i, t) in tets.iter().enumerate() {
+            let b = Aabb::from_points(t.iter().map(|v| &rest[v.idx()]));
+            let (lo, hi) = (loc.cell_of(b.min), loc.cell_of(b.max));
+            for z in lo[2]..=hi[2] {
+                for y in lo[1]..=hi[1] {
+                    for x in lo[0]..=hi[0] {
+                        cells[loc.index([x, y, z])].push(i as u32);
+                    }
+                }
+            }
+        }
+        loc.cells = cells;
+        loc
+    }
+
+    fn cell_of(&self, p: DVec3) -> [usize; 3] {
+        let c = (p - self.bounds.min) / self.cell;
+        [0, 1, 2].map(|k| (c[k].max(0.0) as usize).min(self.dims[k] - 1))
+    }
+
+    fn index(&self, c: [usize; 3]) -> usize {
+        (c[2] * self.dims[1] + c[1]) * self.dims[0] + c[0]
+    }
+
+    /// Barycentric coordinates of `p` in tet `t` at rest.
+    fn barycentric(&self, t: usize, p: DVec3) -> [f64; 4] {
+        let [a, b, c, d] = self.tets[t].map(|v| self.rest[v.idx()]);
+        let vol = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| (b - a).dot((c - a).cross(d - a));
+        let total = vol(a, b, c, d);
+        [
+            vol(p, b, c, d) / total,
+            vol(a, p, c, d) / total,
+            vol(a, b, p, d) / total,
+            vol(a, b, c, p) / total,
+        ]
+    }
+
+    /// `p` (at rest) mapped to `current` positions.
+    fn map(&self, p: DVec3, current: &[DVec3]) -> DVec3 {
+        let home = self.cell_of(p);
+        let mut best: Option<(f64, usize)> = None;
+        let reach = self.dims.iter().copied().max().unwrap_or(1);
+        for r in 0..=reach {
+            let lo = home.map(|c| c.saturating_sub(r));
+            let hi = [0, 1, 2].map(|k| (home[k] + r).min(self.dims[k] - 1));
+            for z in lo[2]..=hi[2] {
+                for y in lo[1]..=hi[1] {
+                    for x in lo[0]..=hi[0] {
+                        let on_shell = [x, y, z]
+                            .iter()
+                            .zip(&home)
+                            .any(|(&c, &h)| c.abs_diff(h) == r);
+                        if !on_shell {
+                            continue;
+                        }
+                        for &t in &self.cells[self.index([x, y, z])] {
+                            let w = self.barycentric(t as usize, p);
+                            let m = w.iter().copied().fold(f64::INFINITY, f64::min);
+                            if best.is_none_or(|(b, _)| m > b) {
+                                best = Some((m, t as usize));
+                            }
+                        }
+                    }
+                }
+            }
+            // Inside a tet, or something found one ring out (nearer cells are done).
+            if best.is_some_and(|(m, _)| m >= 0.0) || (best.is_some() && r >= 1) {
+                break;
+            }
+        }
+        let Some((_, t)) = best else {
+            return p;
+        };
+        // Displacement interpolated at the point of the tet nearest `p` (barycentric
+        // coordinates clamped): inside the tet the tet's affine map, outside it a
+        // translation continuing the boundary's, which folds far fewer tets reaching out of
+        // the current mesh (coarse levels do) than extrapolating the affine map would.
+        let tet = self.tets[t];
+        let w = self.barycentric(t, p).map(|x| x.max(0.0));
+        let sum: f64 = w.iter().sum();
+        let shift: DVec3 = (0..4)
+            .map(|k| (current[tet[k].idx()] - self.rest[tet[k].idx()]) * (w[k] / sum))
+            .sum();
+        p + shift
+    }
+}

@@ -1,0 +1,435 @@
+//! Time-critical cutting of a deformable body (issue 7, items 1–3): the frontier-first cut
+//! of the current mesh, the queue of MT work, equivalence with the direct MT cut for an
+//! undeformed body, and for a deformed body a valid rest-space MT onto which the current
+//! mesh maps back exactly. The MT and the current mesh are validated after every step.
+
+mod cut_common;
+mod mt_common;
+mod mtcut_common;
+
+use cut_common::{Kind, Rng, random_polygon};
+use mtcut::cut::{CutError, LiveError, LiveMt, MtCutter, PendingBudget};
+use mtcut::geom::{CutPolygon, DVec3};
+use mtcut::mesh::TetMesh;
+use mtcut::mt::{ExtractOptions, Mt};
+
+/// A resolution between the finest and the coarsest mesh: the median fragment error.
+fn middle(mt: &Mt) -> ExtractOptions {
+    let mut e: Vec<f64> = (0..mt.nb_fragments())
+        .map(|f| mt.fragment_error(mtcut::mesh::FragmentId::from_usize(f)))
+        .filter(|e| e.is_finite() && *e > 0.0)
+        .collect();
+    e.sort_by(f64::total_cmp);
+    ExtractOptions::threshold(e[e.len() / 2])
+}
+
+fn live(name: &str) -> LiveMt {
+    let mt = mt_common::built(name).1.clone();
+    let r = middle(&mt);
+    LiveMt::new(mt, &r, MtCutter::DEFAULT_OPTIONS).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// The tets of `mesh` as sorted rest positions (bit patterns): numbering-free.
+fn tet_keys(mesh: &TetMesh, rest: &[DVec3]) -> Vec<[[u64; 3]; 4]> {
+    let mut keys: Vec<[[u64; 3]; 4]> = mesh
+        .tets()
+        .iter()
+        .map(|t| {
+            let mut k = t.map(|v| rest[v.idx()].to_array().map(f64::to_bits));
+            k.sort_unstable();
+            k
+        })
+        .collect();
+    keys.sort_unstable();
+    keys
+}
+
+/// The current mesh is valid, the MT too, and (nothing pending) the current mesh at rest is
+/// exactly the MT's extraction at the live resolution, each current vertex named by the MT
+/// vertex at its rest position.
+fn check(l: &LiveMt, case: &str) {
+    let v = l.mesh().validate();
+    assert!(v.is_valid(), "{case}: current mesh: {v}");
+    let r = l.mt().validate();
+    assert!(r.is_valid(), "{case}: MT: {r}");
+    if l.pending_cuts() > 0 {
+        return;
+    }
+    let e = l.mt().extract(l.resolution()).expect("extract");
+    assert_eq!(
+        tet_keys(l.mesh(), l.rest_positions()),
+        tet_keys(&e.mesh, e.mesh.positions()),
+        "{case}: the current mesh at rest is not the MT's extraction"
+    );
+    for (i, v) in l.mt_vertex_ids().iter().enumerate() {
+        assert!(v.is_valid(), "{case}: current vertex {i} has no MT vertex");
+        assert_eq!(
+            l.mt().position(*v),
+            l.rest_positions()[i],
+            "{case}: vertex {i}"
+        );
+    }
+}
+
+/// A smooth bend of the body (no tet inverted): x moves with sin(y), z with cos(x).
+fn bend(rest: &[DVec3], amount: f64, diag: f64) -> Vec<DVec3> {
+    let k = std::f64::consts::TAU / diag;
+    rest.iter()
+        .map(|p| {
+            p + DVec3::new(
+                amount * diag * (k * p.y).sin(),
+                0.0,
+                amount * diag * (k * p.x).cos(),
+            )
+        })
+        .collect()
+}
+
+fn diag(mesh: &TetMesh) -> f64 {
+    let b = mesh.bbox();
+    (b.max - b.min).length()
+}
+
+fn cuts(name: &str, seed: u64, n: usize) -> Vec<CutPolygon> {
+    let mesh = cut_common::mesh(name);
+    let mut rng = Rng(seed);
+    (0..n)
+        .map(|i| {
+            let kind = [Kind::Through, Kind::Partial, Kind::Tiny][i % 3];
+            random_polygon(mesh, kind, &mut rng)
+        })
+        .collect()
+}
+
+#[test]
+fn undeformed_time_critical_cuts_give_the_direct_cuts_mt() {
+    for name in mt_common::MESHES {
+        let polygons = cuts(name, 7, 4);
+        let mut l = live(name);
+        let mut direct = MtCutter::new(mt_common::built(name).1.clone(), MtCutter::DEFAULT_OPTIONS)
+            .expect("cutter");
+        for (i, p) in polygons.iter().enumerate() {
+            let case = format!("{name} cut {i}");
+            let c = l.cut(p).unwrap_or_else(|e| panic!("{case}: {e}"));
+            assert_eq!(c.pending, 1, "{case}");
+            check(&l, &format!("{case}, frontier first"));
+            let r = l
+                .process_pending(PendingBudget::All)
+                .unwrap_or_else(|e| panic!("{case}: {e}"));
+            assert_eq!((r.cuts.len(), r.cuts_left), (1, 0), "{case}");
+            assert!(
+                !r.remeshed,
+                "{case}: the current mesh did not map back onto the MT"
+            );
+            direct.cut(p).expect("direct cut");
+            assert!(
+                l.mt().canonical_form() == direct.mt().canonical_form(),
+                "{case}: the MT differs from the direct cut's"
+            );
+            check(&l, &case);
+        }
+    }
+}
+
+#[test]
+fn queued_cuts_are_processed_within_their_budget_and_block_resolution_changes() {
+    let name = "fandisk";
+    let mut l = live(name);
+    let polygons = cuts(name, 11, 3);
+    for p in &polygons {
+        l.cut(p).expect("cut");
+        check(&l, "queued");
+    }
+    assert_eq!(l.pending_cuts(), 3);
+    let before = l.mesh().clone();
+    match l.set_resolution(&ExtractOptions::COARSEST) {
+        Err(LiveError::Pending { cuts: 3 }) => {}
+        other => panic!("resolution change while pending: {other:?}"),
+    }
+    assert!(
+        *l.mesh() == before,
+        "a refused resolution change changed the mesh"
+    );
+    // One fragment of budget: exactly one cut per call (each involves fragments).
+    for left in (0..3).rev() {
+        let r = l
+            .process_pending(PendingBudget::Fragments(1))
+            .expect("process");
+        assert_eq!((r.cuts.len(), r.cuts_left), (1, left));
+        assert!(r.fragments > 0);
+        check(&l, &format!("{left} left"));
+    }
+    let r = l
+        .process_pending(PendingBudget::Time(std::time::Duration::ZERO))
+        .expect("no-op");
+    assert!(r.cuts.is_empty() && !r.remeshed);
+    let mut direct =
+        MtCutter::new(mt_common::built(name).1.clone(), MtCutter::DEFAULT_OPTIONS).expect("cutter");
+    for p in &polygons {
+        direct.cut(p).expect("direct");
+    }
+    assert!(l.mt().canonical_form() == direct.mt().canonical_form());
+    // Nothing pending: the resolution changes, ids name the MT's vertices.
+    l.set_resolution(&ExtractOptions::COARSEST)
+        .expect("coarsest");
+    check(&l, "coarsest");
+}
+
+#[test]
+fn a_deformed_body_is_cut_where_it_lies_and_maps_back_exactly() {
+    for name in mt_common::MESHES {
+        let mut l = live(name);
+        let d = diag(l.mesh());
+        let rest = l.rest_positions().to_vec();
+        l.set_positions(&bend(&rest, 0.005, d)).expect("bend");
+        let b = l.mesh().bbox();
+        let c = (b.min + b.max) * 0.5;
+        // Through the bent body's middle, then a partial cut across it.
+        let through = cut_common::square(c, DVec3::new(0.3, 1.0, 0.2).normalize(), d);
+        let partial = cut_common::square(c, DVec3::new(1.0, 0.1, -0.3).normalize(), 0.15 * d);
+        for (i, p) in [through, partial].iter().enumerate() {
+            let case = format!("{name} deformed cut {i}");
+            let stats = l.cut(p).unwrap_or_else(|e| panic!("{case}: {e}")).stats;
+            assert!(stats.tets_cut > 0, "{case}: nothing cut");
+            check(&l, &format!("{case}, frontier first"));
+            // The body moves on before the MT catches up: the cut stays where it was made.
+            let now = l.mesh().positions().to_vec();
+            let moved: Vec<DVec3> = now.iter().map(|p| *p + DVec3::splat(0.01 * d)).collect();
+            l.set_positions(&moved).expect("move");
+            let r = l
+                .process_pending(PendingBudget::All)
+                .unwrap_or_else(|e| panic!("{case}: {e}"));
+            assert!(
+                !r.remeshed,
+                "{case}: the current mesh did not map back onto the MT"
+            );
+            check(&l, &case);
+            // The current mesh kept the host's positions.
+            assert!(
+                l.mesh().positions()[..now.len()] == moved[..],
+                "{case}: positions lost"
+            );
+        }
+        // The through cut separated the body on every level.
+        assert!(
+            l.mt().nb_components() >= 2,
+            "{name}: {} components",
+            l.mt().nb_components()
+        );
+    }
+}
+
+#[test]
+fn bad_positions_are_refused_and_change_nothing() {
+    let mut l = live("pinion");
+    let rest = l.rest_positions().to_vec();
+    let n = rest.len();
+    let before = l.mesh().clone();
+    let err = |r: Result<(), LiveError>| match r {
+        Err(LiveError::Cut(e)) => e,
+        other => panic!("expected a refusal, got {other:?}"),
+    };
+    assert_eq!(
+        err(l.set_positions(&rest[..n - 1])),
+        CutError::PositionCount {
+            count: n - 1,
+            expected: n
+        }
+    );
+    let mut nan = rest.clone();
+    nan[5].y = f64::NAN;
+    assert_eq!(
+        err(l.set_positions(&nan)),
+        CutError::NonFinitePosition { vertex: 5 }
+    );
+    // Swapping two vertices of a tet inverts it.
+    let t = l.mesh().tets()[0];
+    let mut inverted = rest.clone();
+    inverted.swap(t[0].idx(), t[1].idx());
+    assert!(matches!(
+        err(l.set_positions(&inverted)),
+        CutError::InvertedTet { .. }
+    ));
+    assert!(*l.mesh() == before, "a refused update changed the mesh");
+}
+
+#[test]
+fn degenerate_cuts_keep_the_mt_equal_to_the_direct_cut_and_the_mesh_its_extraction() {
+    // Through vertices, along edges and faces: the frontier's cut may decide otherwise
+    // than the MT's at vertices on the plane; then the current mesh is replaced by the
+    // MT's extraction (reported), and stays exactly that extraction.
+    let mut remeshed = 0;
+    for name in mt_common::MESHES {
+        let mesh = cut_common::mesh(name);
+        let mut rng = Rng(23);
+        let mut l = live(name);
+        let mut direct = MtCutter::new(mt_common::built(name).1.clone(), MtCutter::DEFAULT_OPTIONS)
+            .expect("cutter");
+        for (i, kind) in [Kind::Vertices, Kind::AlongEdge, Kind::AlongFace]
+            .into_iter()
+            .enumerate()
+        {
+            let p = random_polygon(mesh, kind, &mut rng);
+            let case = format!("{name} {kind:?} {i}");
+            l.cut(&p).unwrap_or_else(|e| panic!("{case}: {e}"));
+            check(&l, &format!("{case}, frontier first"));
+            let r = l
+                .process_pending(PendingBudget::All)
+                .unwrap_or_else(|e| panic!("{case}: {e}"));
+            remeshed += usize::from(r.remeshed);
+            direct.cut(&p).expect("direct");
+            assert!(
+                l.mt().canonical_form() == direct.mt().canonical_form(),
+                "{case}: MT differs"
+            );
+            check(&l, &case);
+        }
+    }
+    eprintln!("degenerate cuts remeshed: {remeshed} of 9");
+}
+
+/// The blade of tests/mtcut_cut.rs's sweep across the MT (a plane of no special direction:
+/// the MT cut's known failures are elsewhere, tests/mt_scalpel.rs), crossing `mt` in
+/// `steps` planar sweeps.
+fn sweep(mt: &Mt, steps: usize) -> Vec<CutPolygon> {
+    let b = mtcut::geom::Aabb::from_points(mt.positions());
+    let (c, d) = (b.center(), b.max - b.min);
+    let blade = |k: usize| {
+        let x = b.min.x - 0.05 * d.x + 1.1 * d.x * k as f64 / steps as f64;
+        [
+            DVec3::new(x, c.y + 0.013 * d.y, b.min.z - 0.1 * d.z),
+            DVec3::new(x, c.y - 0.011 * d.y, b.max.z + 0.1 * d.z),
+        ]
+    };
+    (0..steps)
+        .map(|k| {
+            let s = mtcut::geom::scalpel_sweep(
+                blade(k),
+                blade(k + 1),
+                mtcut::geom::Tolerance { relative: 1e-9 },
+            )
+            .expect("sweep");
+            assert_eq!(s.len(), 1, "a planar sweep");
+            s[0].clone()
+        })
+        .collect()
+}
+
+#[test]
+fn a_blade_swept_through_the_live_model_cuts_frontier_first_at_every_step() {
+    // The scalpel of issue 7 item 4 on the live model: the blade crosses the body in the
+    // plane z = middle in 8 steps; each step cuts the current mesh at once and the MT
+    // after; the body separates at the end.
+    for name in mt_common::MESHES {
+        let mt = mt_common::built(name).1.clone();
+        let r = middle(&mt);
+        let mut l = LiveMt::new(mt, &r, mtcut::cut::Scalpel::OPTIONS).expect("live");
+        let mut remeshed = 0;
+        for (k, p) in sweep(l.mt(), 8).iter().enumerate() {
+            let case = format!("{name} step {k}");
+            l.cut(p).unwrap_or_else(|e| panic!("{case}: {e}"));
+            check(&l, &format!("{case}, frontier first"));
+            let r = l
+                .process_pending(PendingBudget::All)
+                .unwrap_or_else(|e| panic!("{case}: {e}"));
+            remeshed += usize::from(r.remeshed);
+            check(&l, &case);
+        }
+        assert_eq!(
+            mtcut::cut::Components::of(l.mesh()).count,
+            2,
+            "{name}: the blade crossed the body"
+        );
+        eprintln!("{name}: steps remeshed {remeshed} of 8");
+    }
+}
+
+#[test]
+fn a_blade_swept_through_a_bent_body_keeps_the_mt_valid_and_maps_back() {
+    // The body bent by 0.5% of its diagonal while the blade crosses it: each step is cut
+    // where the body lies, the MT at rest, and the current mesh maps back exactly every
+    // time; the body separates.
+    for name in mt_common::MESHES {
+        let mt = mt_common::built(name).1.clone();
+        let r = middle(&mt);
+        let mut l = LiveMt::new(mt, &r, mtcut::cut::Scalpel::OPTIONS).expect("live");
+        let d = diag(l.mesh());
+        let rest = l.rest_positions().to_vec();
+        l.set_positions(&bend(&rest, 0.005, d)).expect("bend");
+        for (k, p) in sweep(l.mt(), 8).iter().enumerate() {
+            let case = format!("{name} step {k}");
+            l.cut(p).unwrap_or_else(|e| panic!("{case}: {e}"));
+            check(&l, &format!("{case}, frontier first"));
+            let r = l
+                .process_pending(PendingBudget::All)
+                .unwrap_or_else(|e| panic!("{case}: {e}"));
+            assert!(
+                !r.remeshed && r.folded == 0,
+                "{case}: remeshed {} folded {}",
+                r.remeshed,
+                r.folded
+            );
+            check(&l, &case);
+        }
+        assert_eq!(
+            mtcut::cut::Components::of(l.mesh()).count,
+            2,
+            "{name}: not separated"
+        );
+        assert!(l.mt().nb_components() >= 2, "{name}: MT not separated");
+    }
+}
+
+#[test]
+#[ignore = "KNOWN FAILURE: liver step 2 - the body moved between steps, so the last step's crack tips on the coarser levels (placed by their combinations of moved vertices) no longer lie in the new sweep's plane: the turning-blade failure of tests/mt_scalpel.rs; 9 tips unsnapped, MT invalid"]
+fn a_blade_swept_through_a_moving_deformed_body_keeps_the_mt_valid_and_maps_back() {
+    // The body bends more at every step (0.5% of its diagonal, then 2% more per step: thin children of the cuts must not invert)
+    // while the blade crosses it: each step is cut where the body lies, the MT at rest,
+    // and the current mesh maps back exactly every time.
+    for name in mt_common::MESHES {
+        let mt = mt_common::built(name).1.clone();
+        let r = middle(&mt);
+        let mut l = LiveMt::new(mt, &r, mtcut::cut::Scalpel::OPTIONS).expect("live");
+        let d = diag(l.mesh());
+        for (k, p) in sweep(l.mt(), 8).iter().enumerate() {
+            let case = format!("{name} step {k}");
+            let rest = l.rest_positions().to_vec();
+            l.set_positions(&bend(&rest, 0.005 * (1.0 + 0.02 * k as f64), d))
+                .unwrap_or_else(|e| panic!("{case}: {e}"));
+            l.cut(p).unwrap_or_else(|e| panic!("{case}: {e}"));
+            check(&l, &format!("{case}, frontier first"));
+            let r = l
+                .process_pending(PendingBudget::All)
+                .unwrap_or_else(|e| panic!("{case}: {e}"));
+            assert!(
+                !r.remeshed && r.folded == 0,
+                "{case}: remeshed {} folded {}",
+                r.remeshed,
+                r.folded
+            );
+            check(&l, &case);
+        }
+        // (The body moved between steps while the blade's sweeps are given in world space:
+        // each sweep starts where the blade was, not where the crack moved to, so bridges
+        // may stay; separation is not expected.)
+    }
+}
+
+#[test]
+fn a_deformation_folding_tets_of_other_levels_falls_back_to_a_rest_cut() {
+    // A 1% bend of the liver folds MT tets the blade's first sweep meets (measured: two);
+    // that cut is made at rest with the polygon mapped by the best-fitting affine map, and
+    // the current mesh is replaced by the MT's extraction. Everything stays valid.
+    let mt = mt_common::built("liver").1.clone();
+    let r = middle(&mt);
+    let mut l = LiveMt::new(mt, &r, mtcut::cut::Scalpel::OPTIONS).expect("live");
+    let d = diag(l.mesh());
+    let rest = l.rest_positions().to_vec();
+    l.set_positions(&bend(&rest, 0.01, d)).expect("bend");
+    let p = &sweep(l.mt(), 8)[0];
+    l.cut(p).expect("cut");
+    check(&l, "frontier first");
+    let r = l.process_pending(PendingBudget::All).expect("pending");
+    assert_eq!((r.folded, r.remeshed), (1, true));
+    check(&l, "after the fallback");
+}
