@@ -48,12 +48,10 @@ fn fandisk_model(dir: &Path) -> (std::path::PathBuf, Aabb) {
     (model, b)
 }
 
-#[test]
-fn a_straight_blade_opens_the_model_step_by_step() {
-    let dir = scratch("cli_scalpel_straight");
-    let (model, b) = fandisk_model(&dir);
+/// A blade crossing the model's box in 12 steps, in one plane.
+fn straight_blade(b: &Aabb) -> Vec<[[f64; 3]; 2]> {
     let (c, d) = (b.center(), b.max - b.min);
-    let blades: Vec<[[f64; 3]; 2]> = (0..=12)
+    (0..=12)
         .map(|k| {
             let x = b.min.x - 0.05 * d.x + 1.1 * d.x * k as f64 / 12.0;
             [
@@ -61,7 +59,14 @@ fn a_straight_blade_opens_the_model_step_by_step() {
                 [x, c.y - 0.011 * d.y, b.max.z + 0.1 * d.z],
             ]
         })
-        .collect();
+        .collect()
+}
+
+#[test]
+fn a_straight_blade_opens_the_model_step_by_step() {
+    let dir = scratch("cli_scalpel_straight");
+    let (model, b) = fandisk_model(&dir);
+    let blades = straight_blade(&b);
     let path = dir.join("path.json");
     write_path(&path, &blades);
     let out = dir.join("series");
@@ -186,4 +191,45 @@ fn a_step_that_breaks_the_model_stops_the_run() {
     }
     assert!(!pvd.contains("step-0004.vtu"));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn time_critical_steps_cut_the_current_mesh_first() {
+    let dir = scratch("cli_scalpel_time_critical");
+    let (model, b) = fandisk_model(&dir);
+    let path = dir.join("path.json");
+    write_path(&path, &straight_blade(&b));
+    let (out, saved) = (dir.join("series"), dir.join("cut.mt"));
+    let j = json(&scalpel_args(
+        &model,
+        &path,
+        &out,
+        &saved,
+        &["--time-critical", "--threshold", "1e-4", "--json"],
+    ));
+    assert_eq!(j["time_critical"], true, "{j}");
+    let steps = j["steps"].as_array().expect("steps");
+    assert_eq!(steps.len(), 12, "{j}");
+    for st in steps {
+        assert!(st["seconds_frontier_first"].as_f64().is_some(), "{st}");
+        assert!(st["seconds_pending"].as_f64().is_some(), "{st}");
+        assert_eq!(st["remeshed"], false, "{st}");
+    }
+    assert!(
+        steps
+            .iter()
+            .any(|st| st["current_tets_cut"].as_u64() > Some(0))
+    );
+    // Each step's current mesh: valid, one piece until the blade has crossed, two after.
+    let mut before = 0;
+    for k in 0..=12 {
+        let mesh = read_valid(&out.join(format!("step-{k:04}.vtu")));
+        let parts = Components::of(&mesh).count;
+        assert!(parts >= before && parts <= 2, "step {k}: {parts} pieces");
+        before = parts;
+    }
+    assert_eq!(before, 2, "the blade did not separate the body");
+    let back = Mt::load(&saved).expect("saved model");
+    assert!(back.validate().is_valid());
+    assert_eq!(back.nb_components(), 2);    std::fs::remove_dir_all(&dir).ok();
 }

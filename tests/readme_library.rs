@@ -43,3 +43,50 @@ fn readme_library_example_runs() -> Result<(), Box<dyn std::error::Error>> {
     std::fs::remove_dir_all(&dir)?;
     Ok(())
 }
+
+/// The README's time-critical example, run as written.
+#[test]
+fn readme_time_critical_example_runs() -> Result<(), Box<dyn std::error::Error>> {
+    use mtcut::cut::{LiveMt, MtCutter, PendingBudget};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/fandisk.node");
+    let (mesh, _) = mtcut::io::read_mesh(&path)?;
+    let (mt, _) = Mt::build(&mesh, &BuildOptions::DEFAULT)?;
+    let (c, d) = (mesh.bbox().center(), mesh.bbox().diagonal());
+    let polygon = CutPolygon::new(&[
+        c + DVec3::new(-d, -d, 0.0),
+        c + DVec3::new(d, -d, 0.0),
+        c + DVec3::new(d, d, 0.0),
+        c + DVec3::new(-d, d, 0.0),
+    ])?;
+    // --- README time-critical begins
+    // The simulation's mesh: an extraction of the MT, moved by the host every time step.
+    let mut live = LiveMt::new(
+        mt,
+        &ExtractOptions::threshold(1e-4),
+        MtCutter::DEFAULT_OPTIONS,
+    )?;
+    let moved: Vec<DVec3> = live
+        .rest_positions()
+        .iter()
+        .map(|p| *p + DVec3::new(0.0, 0.0, 0.002 * d * (p.x / d).sin()))
+        .collect();
+    live.set_positions(&moved)?;
+    // Frontier first: returns as soon as the current mesh is cut where it lies.
+    let step = live.cut(&polygon)?;
+    println!(
+        "{} current tets cut in {:.1} ms",
+        step.stats.tets_cut,
+        step.seconds * 1e3
+    );
+    // Later time steps: the rest of the MT, a few fragments at a time.
+    while live.pending_cuts() > 0 {
+        live.process_pending(PendingBudget::Fragments(200))?;
+    }
+    // Each current vertex is named by its MT vertex again (for the host's FEM state).
+    assert!(live.mt_vertex_ids().iter().all(|v| v.is_valid()));
+    // --- README time-critical ends
+    assert!(live.mesh().validate().is_valid());
+    assert!(live.mt().validate().is_valid());
+    assert_eq!(Components::of(live.mesh()).count, 2);
+    Ok(())
+}

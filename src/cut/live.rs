@@ -6,45 +6,58 @@
 //! ([`LiveMt::cut`]) is given in the current (deformed) space and runs in two parts:
 //!
 //! 1. **Frontier first.** Only the current mesh is cut, at its current positions, by the
-//!    plain-mesh engine ([`Cutter`]: the hierarchy finds the tets, cost in proportion to
-//!    them). The call returns with the current mesh updated. Each new vertex is a linear
-//!    combination of older ones (the cut surface CS of the paper: edge points by their
-//!    parameter, face points by their weights, copies), so its rest position follows from
-//!    the same coefficients.
+//!    plain-mesh engine ([`Cutter::for_mt_frontier`]: the hierarchy finds the tets, cost in
+//!    proportion to them; the MT's vertex scales and the MT cut's rules for vertices on the
+//!    plane, so it decides as the MT cut will on those tets). The call returns with the
+//!    current mesh updated. Each new vertex is a linear combination of older ones (the cut
+//!    surface CS of the paper: edge points by their parameter, face points by their
+//!    weights, copies), so its rest position follows from the same coefficients.
 //! 2. **The rest of the MT, later.** The cut is queued, with the deformation it was made
 //!    in (the current mesh's rest and current positions, snapshotted only when they are
 //!    about to change while the cut waits). [`LiveMt::process_pending`] cuts the MT with
-//!    it: every pool vertex is placed in the space the cut was given in (vertices of the
-//!    current mesh at their current positions, the others mapped through the current tet
-//!    containing them in rest space) and [`MtCutter::cut_deformed`] makes every decision
-//!    there, placing new vertices at rest by the same parameters. Each tet of each level
-//!    is cut by one plane in that space — CS pulled back to rest space through the tet's
-//!    own affine map — so the levels stay consistent, and the tets of the current
-//!    frontier are cut exactly as the first part cut them. An undeformed body needs no
-//!    mapping: the MT is cut by the polygon itself, as [`MtCutter::cut`] would.
+//!    it: every pool vertex is placed in the space the cut was given in — vertices of the
+//!    current mesh where the host put them; vertices made by earlier cuts of this model by
+//!    the combinations they were made as (so an earlier crack lies, on every level, where
+//!    those cuts put it, and a blade continuing it meets its tips on its contour as at
+//!    rest); the others by the displacement of the current tet holding them at rest — and
+//!    [`MtCutter::cut_deformed`] makes every decision there, placing new vertices at rest
+//!    by the same parameters. Each tet of each level is cut by one plane in that space (CS
+//!    pulled back to rest space through the tet's own affine map), so the levels stay
+//!    consistent, and the tets of the current frontier are cut exactly as the first part
+//!    cut them. Consecutive cuts with no change of positions between them reuse one
+//!    placement. An undeformed body needs none: the MT is cut by the polygon itself,
+//!    exactly as [`MtCutter::cut`] would.
 //!
-//! After each queued cut the current mesh's new vertices are matched to the MT's (by the
-//! rest positions of the tets holding them) and every current tet is checked to be a tet
-//! of the MT: the current mesh *maps back exactly*, and [`LiveMt::mt_vertex_ids`] names the
-//! MT vertex of each current vertex again. Where the two cuts decided differently (they
-//! can only where vertices lie on the cut's plane: the MT cut decides there over all levels,
-//! see [`super::mt_cut`]), the current mesh is replaced, once the queue is empty, by the
-//! MT's extraction at the same resolution, the host's positions carried over by MT vertex,
-//! and the report says so ([`PendingReport::remeshed`]).
+//! After each queued cut, the MT's extraction at the live resolution must hold exactly the
+//! current tets (matched by their vertices' rest positions): the current mesh *maps back
+//! exactly*, and [`LiveMt::mt_vertex_ids`] names the MT vertex of each current vertex
+//! again. Where the two parts decided differently, the current mesh is replaced, once the
+//! queue is empty, by that extraction, the host's positions carried over by MT vertex, and
+//! the report says so ([`PendingReport::remeshed`]).
 //!
 //! While cuts are pending the resolution cannot change ([`LiveMt::set_resolution`] refuses,
 //! naming the pending cuts), as the paper requires; the current mesh stays usable, and can
 //! be moved and cut again.
 //!
-//! # Limits
+//! # Limits (measured in tests/mt_live.rs)
 //!
+//! * A deformation may fold a tet of another level (its placed vertices inverted) that the
+//!   cut meets: such a cut cannot be made in the deformed space. It is made at rest with
+//!   the polygon mapped by the affine map that best fits the deformation around it
+//!   ([`PendingReport::folded`]); the frontier's cut then does not map back, and the
+//!   current mesh is replaced by the extraction.
+//! * A body moving *between* the steps of one incision: the last step's crack tips on the
+//!   coarser levels, placed by combinations of moved vertices, no longer lie in the next
+//!   sweep's plane (the turning blade of [`super::scalpel`]) and the MT breaks.
 //! * A queued cut is processed whole: [`process_pending`](LiveMt::process_pending) checks
 //!   its budget between cuts, so it may overrun by one cut (the DAG update of a cut is one
 //!   step over all its fragments, [`super::mt_cut`]).
+//! * A resolution given as a budget may extract another frontier after a cut (cuts add
+//!   tets): then the current mesh is replaced rather than matched.
 //! * Vertices that a resolution change brings in (not in the current mesh before) are
-//!   placed through the deformation of the current tet containing them in rest space; the
-//!   host's own state (velocities, stresses) for them must be interpolated by the host,
-//!   which [`LiveMt::mt_vertex_ids`] lets it do.
+//!   placed by the displacement of the current tet containing them at rest; the host's
+//!   own state (velocities, stresses) for them must be interpolated by the host, which
+//!   [`LiveMt::mt_vertex_ids`] lets it do.
 
 use super::classify::{VertexOrigin, origin_position, origin_positions};
 use super::cutter::Cutter;
@@ -136,6 +149,8 @@ struct PendingCut {
     frame: Frame,
     /// The positions' epoch the cut was made in.
     epoch: u64,
+    /// The cut changed the current mesh.
+    changed: bool,
 }
 
 /// An MT with a current mesh that a simulation deforms and cuts (see the [module
@@ -263,6 +278,7 @@ impl LiveMt {
                 Frame::Rest
             },
             epoch: self.epoch,
+            changed: r.stats.tets_cut > 0 || r.stats.vertex_copies > 0,
         });
         Ok(LiveCut {
             stats: r.stats,
@@ -315,6 +331,7 @@ impl LiveMt {
                     made
                 }
             };
+            let changed = front.changed;
             self.pending.pop_front();
             self.cut_origins
                 .extend_from_slice(self.cutter.last_origins());
@@ -325,7 +342,12 @@ impl LiveMt {
             }
             report.fragments += stats.fragments_involved;
             report.cuts.push(stats);
-            if !self.remesh_due && !self.resolve()? {
+            // A cut that changed neither the MT nor the current mesh leaves the match as is.
+            let mt_changed = stats.tets_cut > 0
+                || stats.vertex_copies > 0
+                || stats.ghosts_split > 0
+                || stats.crack_ghosts > 0;
+            if !self.remesh_due && (changed || mt_changed) && !self.resolve()? {
                 self.remesh_due = true;
             }
         }

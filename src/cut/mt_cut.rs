@@ -479,6 +479,15 @@ impl MtCutter {
             &mut states,
             |t| mt.tet(t),
         );
+        if cand.is_empty() {
+            // Nothing to cut: the MT stays as it is (closing it again would cost a pass
+            // over the pool for the same store).
+            self.last_origins.clear();
+            stats.components = mt.nb_components();
+            stats.time.query = start.elapsed().as_secs_f64();
+            stats.time.total = stats.time.query;
+            return Ok(stats);
+        }
         let tets: Vec<Tet> = cand.iter().map(|&t| mt.tet(t)).collect();
         if deformed.is_some() {
             // The deformed positions place each tet by its vertices; a tet they fold has no

@@ -1,8 +1,9 @@
-//! Progressive scalpel cuts of an MT (paper §5's interaction, without its time-critical
-//! part): a straight blade moved in time steps, each step cutting every level of the MT
-//! with the area the blade swept since the last step ([`scalpel_sweep`]: one
-//! quadrilateral, or two triangles when the sweep is not planar), so an incision grows
-//! step by step and may end inside the body.
+//! Progressive scalpel cuts of an MT (paper §5's interaction, direct form): a straight
+//! blade moved in time steps, each step cutting every level of the MT with the area the
+//! blade swept since the last step ([`scalpel_sweep`]: one quadrilateral, or two triangles
+//! when the sweep is not planar), so an incision grows step by step and may end inside the
+//! body. The time-critical form, where each step cuts the simulation's current mesh first
+//! and the MT later, is [`super::LiveMt`] given the same sweeps.
 //!
 //! The MT cut runs with the smallest face-point margin
 //! ([`MIN_FACE_POINT_MARGIN`](super::MIN_FACE_POINT_MARGIN)): each step continues the

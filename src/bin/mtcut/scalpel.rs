@@ -8,14 +8,18 @@
 //! `PATH.json` is a list of blade positions, one per time step, each two 3-D points (the
 //! blade's ends): `[[[x,y,z],[x,y,z]], [[x,y,z],[x,y,z]], ...]`, at least two.
 //!
+//! With `--time-critical` each step runs as a simulation would run it
+//! ([`mtcut::cut::LiveMt`], paper §5): the current mesh is cut first (and written), then
+//! the rest of the model; the statistics give both times.
+//!
 //! A step that leaves an invalid model (see [`mtcut::cut::scalpel`]'s limits: a path
 //! that turns breaks the coarser levels) stops the run with an error naming the step;
 //! the steps before it stay written and listed, and `--save` writes nothing.
 
 use crate::CliResult;
 use crate::parse;
-use mtcut::cut::{Blade, Scalpel};
-use mtcut::geom::DVec3;
+use mtcut::cut::{Blade, LiveMt, PendingBudget, Scalpel};
+use mtcut::geom::{DVec3, Tolerance, scalpel_sweep};
 use mtcut::io::{PvdEntry, write_mesh, write_pvd};
 use mtcut::mt::{ExtractOptions, Mt};
 use serde_json::{Value, json};
@@ -46,6 +50,10 @@ pub struct Args {
     output: PathBuf,
     #[command(flatten)]
     resolution: Resolution,
+    /// Cut the current mesh first at each step, the rest of the model after (paper §5's
+    /// time-critical cut), timing both.
+    #[arg(long)]
+    time_critical: bool,
     /// Also write the cut model after the last step (.mt).
     #[arg(long, value_name = "OUT.mt")]
     save: Option<PathBuf>,
@@ -119,6 +127,9 @@ pub fn run(args: Args) -> CliResult {
     };
     let mt = parse::valid_model(&args.model)?;
     std::fs::create_dir_all(&args.output).map_err(|e| format!("{}: {e}", args.output.display()))?;
+    if args.time_critical {
+        return run_time_critical(&args, mt, &blades, &options);
+    }
     let mut scalpel = Scalpel::new(mt, blades[0])?;
     let mut entries: Vec<PvdEntry> = Vec::new();
     let mut steps: Vec<Value> = Vec::new();
@@ -198,6 +209,122 @@ pub fn run(args: Args) -> CliResult {
     }
     out!(
         "scalpel    {} steps, {} component(s), valid after every step; {:.3} s",
+        blades.len() - 1,
+        mt.nb_components(),
+        seconds
+    );
+    out!("wrote      {} ({} meshes)", pvd.display(), entries.len());
+    if let Some(save) = &args.save {
+        out!("saved      {}", save.display());
+    }
+    Ok(())
+}
+
+/// `--time-critical`: each step cuts the current mesh first ([`LiveMt::cut`], the mesh
+/// written then), then the queued MT cut ([`LiveMt::process_pending`]), then validates both.
+fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOptions) -> CliResult {
+    let mut live = LiveMt::new(mt, options, Scalpel::OPTIONS)?;
+    let pvd = args.output.join("scalpel.pvd");
+    let mut entries: Vec<PvdEntry> = Vec::new();
+    let mut write_step = |k: usize, live: &LiveMt| -> CliResult {
+        let name = format!("step-{k:04}.vtu");
+        write_mesh(args.output.join(&name), live.mesh())?;
+        entries.push(PvdEntry {
+            timestep: k as f64,
+            part: 0,
+            file: PathBuf::from(name),
+        });
+        write_pvd(&pvd, &entries)?;
+        Ok(())
+    };
+    write_step(0, &live)?;
+    let start = Instant::now();
+    let mut steps: Vec<Value> = Vec::new();
+    for (k, w) in blades.windows(2).enumerate().map(|(k, w)| (k + 1, w)) {
+        let failed =
+            |e: &dyn std::fmt::Display| format!("step {k}: {e}; steps 0-{} written", k - 1);
+        let sweep =
+            scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).map_err(|e| failed(&e))?;
+        let (mut frontier_s, mut tets_cut) = (0.0, 0);
+        for polygon in &sweep {
+            let c = live.cut(polygon).map_err(|e| failed(&e))?;
+            frontier_s += c.seconds;
+            tets_cut += c.stats.tets_cut;
+        }
+        write_step(k, &live)?;
+        let r = live
+            .process_pending(PendingBudget::All)
+            .map_err(|e| failed(&e))?;
+        let t_validate = Instant::now();
+        let (model, mesh) = (live.mt().validate(), live.mesh().validate());
+        let validate_seconds = t_validate.elapsed().as_secs_f64();
+        if !model.is_valid() || !mesh.is_valid() {
+            let what = if model.is_valid() {
+                mesh.to_string()
+            } else {
+                model.to_string()
+            };
+            return Err(format!(
+                "step {k}: the cut left an invalid model ({what}); steps 0-{} written to {}, \
+                 nothing saved",
+                k - 1,
+                args.output.display()
+            )
+            .into());
+        }
+        if args.json {
+            steps.push(json!({
+                "step": k,
+                "polygons": sweep.len(),
+                "current_tets_cut": tets_cut,
+                "seconds_frontier_first": frontier_s,
+                "seconds_pending": r.seconds,
+                "fragments": r.fragments,
+                "remeshed": r.remeshed,
+                "folded": r.folded,
+                "cuts": r.cuts.iter().map(|s| s.to_json()).collect::<Vec<_>>(),
+                "components": live.mt().nb_components(),
+                "seconds_validate": validate_seconds,
+            }));
+        } else {
+            out!(
+                "step {k:<4}  {tets_cut} current tets cut in {:.3} ms; model: {} fragments in \
+                 {:.4} s{}; {} component(s)",
+                frontier_s * 1e3,
+                r.fragments,
+                r.seconds,
+                if r.remeshed {
+                    ", current mesh replaced by the model's"
+                } else {
+                    ""
+                },
+                live.mt().nb_components()
+            );
+        }
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    let mt = live.into_mt()?;
+    if let Some(save) = &args.save {
+        mt.save(save)?;
+    }
+    if args.json {
+        out!(
+            "{}",
+            json!({
+                "input": args.model.display().to_string(),
+                "time_critical": true,
+                "steps": steps,
+                "components": mt.nb_components(),
+                "valid": true,
+                "pvd": pvd.display().to_string(),
+                "saved": args.save.as_ref().map(|p| p.display().to_string()),
+                "seconds": seconds,
+            })
+        );
+        return Ok(());
+    }
+    out!(
+        "scalpel    {} steps (time-critical), {} component(s), valid after every step; {:.3} s",
         blades.len() - 1,
         mt.nb_components(),
         seconds
