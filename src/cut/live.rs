@@ -59,7 +59,7 @@
 //!   own state (velocities, stresses) for them must be interpolated by the host, which
 //!   [`LiveMt::mt_vertex_ids`] lets it do.
 
-use super::classify::{VertexOrigin, origin_position, origin_positions};
+use super::classify::{VertexOrigin, origin_positions};
 use super::cutter::Cutter;
 use super::mt_cut::{MtCutStats, MtCutter};
 use super::options::{CutError, CutOptions};
@@ -172,6 +172,9 @@ pub struct LiveMt {
     /// from `first_cut_vertex`).
     cut_origins: Vec<VertexOrigin>,
     first_cut_vertex: usize,
+    /// Where each cut's origins end in `cut_origins` (a cut's new vertices are placed
+    /// together, as [`origin_positions`] places them at rest).
+    cut_ends: Vec<usize>,
     /// Incremented by every change of positions.
     epoch: u64,
     /// The pool placed for the last deformed cut, and its epoch: later cuts of the same
@@ -197,6 +200,7 @@ impl LiveMt {
         Ok(LiveMt {
             cut_origins: Vec::new(),
             first_cut_vertex,
+            cut_ends: Vec::new(),
             epoch: 0,
             placement: None,
             cutter,
@@ -335,6 +339,7 @@ impl LiveMt {
             self.pending.pop_front();
             self.cut_origins
                 .extend_from_slice(self.cutter.last_origins());
+            self.cut_ends.push(self.cut_origins.len());
             if let Some((_, placed)) = &mut self.placement {
                 let mut p = std::mem::take(placed);
                 self.extend_placement(&mut p);
@@ -417,25 +422,31 @@ impl LiveMt {
             }
         }
         let locator = Locator::new(&d.rest, &d.tets);
-        let mut placed: Vec<DVec3> = Vec::with_capacity(mt.nb_vertices());
-        for (v, h) in host.iter().enumerate() {
-            let p = match (h, v.checked_sub(self.first_cut_vertex)) {
-                (Some(p), _) => *p,
-                (None, Some(k)) => origin_position(&placed, &self.cut_origins[k]),
-                (None, None) => locator.map(mt.positions()[v], &d.current),
-            };
-            placed.push(p);
+        let mut placed: Vec<DVec3> = host[..self.first_cut_vertex]
+            .iter()
+            .enumerate()
+            .map(|(v, h)| h.unwrap_or_else(|| locator.map(mt.positions()[v], &d.current)))
+            .collect();
+        self.extend_placement(&mut placed);
+        for (p, h) in placed.iter_mut().zip(&host).skip(self.first_cut_vertex) {
+            if let Some(h) = h {
+                *p = *h;
+            }
         }
         placed
     }
 
-    /// Places the pool's vertices after those of `placed` (all made by cuts of this model)
-    /// by the combinations they were made as.
+    /// Places the pool's vertices after those of `placed` (all made by cuts of this model,
+    /// `placed` ending where a cut's vertices begin) by the combinations they were made as,
+    /// a cut's vertices together as [`origin_positions`] places them at rest (points at the
+    /// same place, seen from the two lips of a crack, equal to the bit).
     fn extend_placement(&self, placed: &mut Vec<DVec3>) {
-        for v in placed.len()..self.cutter.mt().nb_vertices() {
-            let o = &self.cut_origins[v - self.first_cut_vertex];
-            let p = origin_position(placed, o);
-            placed.push(p);
+        let mut start = placed.len() - self.first_cut_vertex;
+        let first = self.cut_ends.partition_point(|&e| e <= start);
+        for &end in &self.cut_ends[first..] {
+            let made = origin_positions(placed, &self.cut_origins[start..end]);
+            placed.extend(made);
+            start = end;
         }
     }
 

@@ -1184,42 +1184,46 @@ pub(crate) fn settle_plane_vertices(
     // candidate tets (one decision per cluster, so no edge between two of them is taken
     // for crossed when their exact sides agree: its crossing would lie off the edge); the
     // sides (bit per state) of the other vertices of their tets.
-    let mut index: HashMap<VertexId, u32> = HashMap::new();
-    let mut parent: Vec<u32> = Vec::new();
-    let mut sides: Vec<u8> = Vec::new();
+    // (A sorted list, not a hash map: a few hundred vertices, looked up by binary search.)
     let mut flags: Vec<u8> = Vec::with_capacity(cand.len());
+    let mut index: Vec<VertexId> = Vec::new();
     for (&t, s) in cand.iter().zip(states.iter()) {
         let tet = tet_of(t);
         let mut flag = 0u8;
         for j in 0..4 {
             if near(tet[j], s[j]) {
                 flag |= 1 << j;
+                index.push(tet[j]);
             }
         }
         flags.push(flag);
+    }
+    if index.is_empty() {
+        return;
+    }
+    index.sort_unstable();
+    index.dedup();
+    let slot = |v: VertexId| index.binary_search(&v).expect("a listed vertex") as u32;
+    let mut parent: Vec<u32> = (0..index.len() as u32).collect();
+    let mut sides: Vec<u8> = vec![0; index.len()];
+    for ((&t, s), &flag) in cand.iter().zip(states.iter()).zip(&flags) {
         if flag == 0 {
             continue;
         }
+        let tet = tet_of(t);
         let mut others = 0u8;
         for j in (0..4).filter(|&j| flag & (1 << j) == 0 && s[j] != ON) {
             others |= 1 << s[j];
         }
         let mut first = None;
         for j in (0..4).filter(|&j| flag & (1 << j) != 0) {
-            let i = *index.entry(tet[j]).or_insert_with(|| {
-                parent.push(parent.len() as u32);
-                sides.push(0);
-                parent.len() as u32 - 1
-            });
+            let i = slot(tet[j]);
             sides[i as usize] |= others;
             match first {
                 None => first = Some(i),
                 Some(f) => union(&mut parent, f, i),
             }
         }
-    }
-    if index.is_empty() {
-        return;
     }
     let mut cluster = vec![0u8; parent.len()];
     for i in 0..parent.len() as u32 {
@@ -1232,7 +1236,7 @@ pub(crate) fn settle_plane_vertices(
         if flags[k] != 0 {
             let tet = tet_of(t);
             for j in (0..4).filter(|&j| flags[k] & (1 << j) != 0) {
-                let r = find(&mut parent, index[&tet[j]]);
+                let r = find(&mut parent, slot(tet[j]));
                 match cluster[r as usize] {
                     x if x == 1 << POS => s[j] = POS,
                     x if x == 1 << NEG => s[j] = NEG,
