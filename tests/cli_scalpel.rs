@@ -231,5 +231,6 @@ fn time_critical_steps_cut_the_current_mesh_first() {
     assert_eq!(before, 2, "the blade did not separate the body");
     let back = Mt::load(&saved).expect("saved model");
     assert!(back.validate().is_valid());
-    assert_eq!(back.nb_components(), 2);    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(back.nb_components(), 2);
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -162,16 +162,7 @@ impl Cutter {
     /// orientation): cut tables need positively oriented tets.
     pub fn set_positions(&mut self, positions: &[DVec3]) -> Result<(), CutError> {
         use rayon::prelude::*;
-        let expected = self.mesh.nb_vertices();
-        if positions.len() != expected {
-            return Err(CutError::PositionCount {
-                count: positions.len(),
-                expected,
-            });
-        }
-        if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
-            return Err(CutError::NonFinitePosition { vertex });
-        }
+        check_positions(positions, self.mesh.nb_vertices())?;
         let inverted = self.mesh.tets().par_iter().position_first(|t| {
             let [a, b, c, d] = t.map(|v| positions[v.idx()]);
             crate::geom::orient3d(a, b, c, d) != Sign::Positive
@@ -612,6 +603,20 @@ impl Cutter {
         } else {
             Side::Positive
         }
+    }
+}
+
+/// Positions given for `expected` vertices: as many, all finite.
+pub(crate) fn check_positions(positions: &[DVec3], expected: usize) -> Result<(), CutError> {
+    if positions.len() != expected {
+        return Err(CutError::PositionCount {
+            count: positions.len(),
+            expected,
+        });
+    }
+    match positions.iter().position(|p| !p.is_finite()) {
+        Some(vertex) => Err(CutError::NonFinitePosition { vertex }),
+        None => Ok(()),
     }
 }
 

@@ -378,16 +378,7 @@ impl MtCutter {
         polygon: &CutPolygon,
         positions: &[DVec3],
     ) -> Result<MtCutStats, CutError> {
-        let expected = self.mt().nb_vertices();
-        if positions.len() != expected {
-            return Err(CutError::PositionCount {
-                count: positions.len(),
-                expected,
-            });
-        }
-        if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
-            return Err(CutError::NonFinitePosition { vertex });
-        }
+        super::cutter::check_positions(positions, self.mt().nb_vertices())?;
         self.cut_with(polygon, None, Some(positions))
     }
 

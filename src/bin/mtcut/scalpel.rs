@@ -188,15 +188,21 @@ pub fn run(args: Args) -> CliResult {
         }
     }
     let seconds = start.elapsed().as_secs_f64();
-    let mt = scalpel.into_mt();
+    finish(&args, scalpel.into_mt(), steps, entries.len(), seconds)
+}
+
+/// After the last step: saves the model if asked, prints the run's summary.
+fn finish(args: &Args, mt: Mt, steps: Vec<Value>, meshes: usize, seconds: f64) -> CliResult {
     if let Some(save) = &args.save {
         mt.save(save)?;
     }
+    let pvd = args.output.join("scalpel.pvd");
     if args.json {
         out!(
             "{}",
             json!({
                 "input": args.model.display().to_string(),
+                "time_critical": args.time_critical,
                 "steps": steps,
                 "components": mt.nb_components(),
                 "valid": true,
@@ -208,12 +214,17 @@ pub fn run(args: Args) -> CliResult {
         return Ok(());
     }
     out!(
-        "scalpel    {} steps, {} component(s), valid after every step; {:.3} s",
-        blades.len() - 1,
+        "scalpel    {} steps{}, {} component(s), valid after every step; {:.3} s",
+        meshes - 1,
+        if args.time_critical {
+            " (time-critical)"
+        } else {
+            ""
+        },
         mt.nb_components(),
         seconds
     );
-    out!("wrote      {} ({} meshes)", pvd.display(), entries.len());
+    out!("wrote      {} ({meshes} meshes)", pvd.display());
     if let Some(save) = &args.save {
         out!("saved      {}", save.display());
     }
@@ -303,35 +314,5 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         }
     }
     let seconds = start.elapsed().as_secs_f64();
-    let mt = live.into_mt()?;
-    if let Some(save) = &args.save {
-        mt.save(save)?;
-    }
-    if args.json {
-        out!(
-            "{}",
-            json!({
-                "input": args.model.display().to_string(),
-                "time_critical": true,
-                "steps": steps,
-                "components": mt.nb_components(),
-                "valid": true,
-                "pvd": pvd.display().to_string(),
-                "saved": args.save.as_ref().map(|p| p.display().to_string()),
-                "seconds": seconds,
-            })
-        );
-        return Ok(());
-    }
-    out!(
-        "scalpel    {} steps (time-critical), {} component(s), valid after every step; {:.3} s",
-        blades.len() - 1,
-        mt.nb_components(),
-        seconds
-    );
-    out!("wrote      {} ({} meshes)", pvd.display(), entries.len());
-    if let Some(save) = &args.save {
-        out!("saved      {}", save.display());
-    }
-    Ok(())
+    finish(args, live.into_mt()?, steps, entries.len(), seconds)
 }
