@@ -582,6 +582,99 @@ static void check_mt(const mtcut_mesh *mesh, const char *dir) {
   mtcut_mt_free(good);
 }
 
+/* The live (time-critical) model: every function refuses NULL handles and pointers, a
+   wrong count or bad numbers, and leaves outputs and the model as they were. */
+static void check_live(const mtcut_mesh *mesh) {
+  mtcut_mt *mt = NULL;
+  mtcut_live *live_sentinel = (mtcut_live *)&failures;
+  mtcut_live *live = live_sentinel, *good = NULL;
+  mtcut_mesh *mesh_sentinel = (mtcut_mesh *)&failures;
+  mtcut_mesh *out = mesh_sentinel;
+  mtcut_mt *mt_sentinel = (mtcut_mt *)&failures;
+  mtcut_mt *mt_out = mt_sentinel;
+  mtcut_pending_report report;
+  mtcut_cut_stats st;
+  double xyz[3 * 64], small[3];
+  uint32_t tets[4 * 64], ids[64];
+  /* A triangle across the cube at z = 0.5. */
+  const double across[9] = {-1, -1, 0.5, 5, -1, 0.5, -1, 5, 0.5};
+  size_t n;
+
+  if (mtcut_mt_build(mesh, NULL, &mt) != MTCUT_STATUS_OK) {
+    fprintf(stderr, "check_live: build: %s\n", mtcut_last_error_message());
+    ++failures;
+    return;
+  }
+  EXPECT(mtcut_live_new(NULL, NULL, &live), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_new(mt, NULL, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  UNTOUCHED(live == live_sentinel);
+  EXPECT(mtcut_live_new(mt, NULL, &good), MTCUT_STATUS_OK);
+  mtcut_mt_free(mt); /* the live model keeps its own copy */
+
+  EXPECT_ZERO(mtcut_live_vertex_count(NULL));
+  EXPECT_ZERO(mtcut_live_tet_count(NULL));
+  EXPECT_ZERO(mtcut_live_pending_cuts(NULL));
+  n = mtcut_live_vertex_count(good);
+  UNTOUCHED(n == 8 && mtcut_live_tet_count(good) == 6);
+
+  EXPECT(mtcut_live_copy_positions(NULL, xyz, 64), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_copy_positions(good, NULL, 64), MTCUT_STATUS_NULL_ARGUMENT);
+  small[0] = -7;
+  EXPECT(mtcut_live_copy_positions(good, small, 1), MTCUT_STATUS_BUFFER_TOO_SMALL);
+  UNTOUCHED(small[0] == -7);
+  EXPECT(mtcut_live_copy_rest_positions(NULL, xyz, 64), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_copy_rest_positions(good, NULL, 64), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_copy_tets(NULL, tets, 64), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_copy_tets(good, NULL, 64), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_copy_mt_vertex_ids(NULL, ids, 64), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_copy_mt_vertex_ids(good, NULL, 64), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_copy_tets(good, tets, 64), MTCUT_STATUS_OK);
+  EXPECT(mtcut_live_copy_mt_vertex_ids(good, ids, 64), MTCUT_STATUS_OK);
+
+  EXPECT(mtcut_live_copy_positions(good, xyz, 64), MTCUT_STATUS_OK);
+  EXPECT(mtcut_live_set_positions(NULL, xyz, n), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_set_positions(good, NULL, n), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_set_positions(good, xyz, n - 1), MTCUT_STATUS_INVALID_ARGUMENT);
+  xyz[4] = NAN;
+  EXPECT(mtcut_live_set_positions(good, xyz, n), MTCUT_STATUS_INVALID_ARGUMENT);
+  EXPECT(mtcut_live_copy_positions(good, xyz, 64), MTCUT_STATUS_OK);
+  UNTOUCHED(xyz[4] == xyz[4]); /* still a number: the refusal changed nothing */
+
+  memset(&st, 0, sizeof st);
+  st.struct_size = sizeof st;
+  EXPECT(mtcut_live_cut(NULL, across, 3, &st), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_cut(good, NULL, 3, &st), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_cut(good, across, 2, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  UNTOUCHED(mtcut_live_pending_cuts(good) == 0);
+  EXPECT(mtcut_live_cut(good, across, 3, &st), MTCUT_STATUS_OK);
+  UNTOUCHED(mtcut_live_pending_cuts(good) == 1 && st.tets_cut > 0);
+
+  EXPECT(mtcut_live_set_resolution(NULL, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_set_resolution(good, NULL), MTCUT_STATUS_PENDING_WORK);
+
+  memset(&report, 0, sizeof report);
+  report.struct_size = sizeof report;
+  EXPECT(mtcut_live_process_pending(NULL, 0, 0.0, &report), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_process_pending(good, 0, -1.0, &report), MTCUT_STATUS_INVALID_ARGUMENT);
+  EXPECT(mtcut_live_process_pending(good, 0, NAN, &report), MTCUT_STATUS_INVALID_ARGUMENT);
+  UNTOUCHED(mtcut_live_pending_cuts(good) == 1);
+  EXPECT(mtcut_live_process_pending(good, 0, 0.0, &report), MTCUT_STATUS_OK);
+  UNTOUCHED(report.cuts_done == 1 && report.cuts_left == 0);
+  EXPECT(mtcut_live_set_resolution(good, NULL), MTCUT_STATUS_OK);
+
+  EXPECT(mtcut_live_mesh(NULL, &out), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_mesh(good, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  UNTOUCHED(out == mesh_sentinel);
+  EXPECT(mtcut_live_mt(NULL, &mt_out), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_live_mt(good, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  UNTOUCHED(mt_out == mt_sentinel);
+  EXPECT(mtcut_live_mt(good, &mt_out), MTCUT_STATUS_OK);
+  mtcut_mt_free(mt_out);
+
+  mtcut_live_free(NULL); /* allowed: nothing happens */
+  mtcut_live_free(good);
+}
+
 int main(int argc, char **argv) {
   mtcut_mesh *mesh = NULL;
   if (argc != 2) {
@@ -600,6 +693,7 @@ int main(int argc, char **argv) {
   check_attributes(mesh);
   check_mt(mesh, argv[1]);
   check_cut(mesh);
+  check_live(mesh);
   mtcut_mesh_free(mesh);
   if (failures > 0) {
     fprintf(stderr, "null_args: %d failures\n", failures);

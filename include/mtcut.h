@@ -98,6 +98,16 @@
 typedef struct mtcut_frontier mtcut_frontier;
 
 /**
+ * A model with the simulation's current mesh (opaque): made by `mtcut_live_new`,
+ * released with `mtcut_live_free`. The current mesh is an extraction of the model; the
+ * host moves its vertices (`mtcut_live_set_positions`) and cuts it
+ * (`mtcut_live_cut`: the current mesh at once, the model later through
+ * `mtcut_live_process_pending`). Each current vertex is named by its model vertex
+ * (`mtcut_live_copy_mt_vertex_ids`), so the host can map its own per-vertex state.
+ */
+typedef struct mtcut_live mtcut_live;
+
+/**
  * A tetrahedral mesh (opaque): vertex positions, tets as four vertex indices each
  * (positively oriented: `(b-a) . ((c-a) x (d-a)) > 0`, VTK's convention), and named
  * per-vertex and per-tet attribute columns of doubles. Every `mtcut_mesh` is valid when
@@ -515,6 +525,40 @@ typedef struct mtcut_frontier_update_stats {
    */
   double seconds;
 } mtcut_frontier_update_stats;
+
+/**
+ * What `mtcut_live_process_pending` did. A versioned struct: set `struct_size` to
+ * `sizeof(mtcut_pending_report)`.
+ */
+typedef struct mtcut_pending_report {
+  /**
+   * Set by the caller to `sizeof(mtcut_pending_report)`; never written by the library.
+   */
+  size_t struct_size;
+  /**
+   * Cuts of the model made by the call.
+   */
+  size_t cuts_done;
+  /**
+   * Fragments (simplification steps) they involved.
+   */
+  size_t fragments;
+  /**
+   * Cuts still queued.
+   */
+  size_t cuts_left;
+  /**
+   * 1 when the current mesh was replaced by the model's extraction at its resolution
+   * (the model decided otherwise than the frontier-first cut): its vertex and tet
+   * numbering changed, positions were carried over by model vertex.
+   */
+  int32_t remeshed;
+  /**
+   * Cuts made at rest because the deformation folded a tet of the model they meet.
+   */
+  size_t folded;
+  double seconds;
+} mtcut_pending_report;
 
 /**
  * Success.
@@ -1245,6 +1289,177 @@ mtcut_status mtcut_frontier_mesh(const struct mtcut_frontier *frontier,
  * A non-NULL `frontier` must be a live handle from this library, not used after the call.
  */
 void mtcut_frontier_free(struct mtcut_frontier *frontier);
+
+/**
+ * A live model on a copy of `mt` (the caller keeps its handle), the current mesh
+ * extracted as `options_or_null` asks (NULL: the input mesh) and at rest, into `*out`.
+ * Cuts use the options of a scalpel (the MT cut's, with the smallest face-point margin,
+ * so a blade swept in steps continues its crack).
+ *
+ * # Safety
+ * `mt` must be a live model handle; a non-NULL `options_or_null` a readable
+ * `mtcut_extract_options` with `struct_size` set; `out` a writable pointer.
+ */
+mtcut_status mtcut_live_new(const struct mtcut_mt *mt,
+                            const struct mtcut_extract_options *options_or_null,
+                            struct mtcut_live **out);
+
+/**
+ * Vertices of the current mesh (0 for a NULL handle).
+ *
+ * # Safety
+ * A non-NULL `live` must be a live handle.
+ */
+size_t mtcut_live_vertex_count(const struct mtcut_live *live);
+
+/**
+ * Tets of the current mesh (0 for a NULL handle).
+ *
+ * # Safety
+ * A non-NULL `live` must be a live handle.
+ */
+size_t mtcut_live_tet_count(const struct mtcut_live *live);
+
+/**
+ * Cuts queued for the model (0 for a NULL handle).
+ *
+ * # Safety
+ * A non-NULL `live` must be a live handle.
+ */
+size_t mtcut_live_pending_cuts(const struct mtcut_live *live);
+
+/**
+ * Copies the current positions (three doubles per vertex) into `xyz`, which holds
+ * `capacity_vertices` vertices; fewer than `mtcut_live_vertex_count` gives
+ * `MTCUT_STATUS_BUFFER_TOO_SMALL`, nothing written.
+ *
+ * # Safety
+ * `live` must be a live handle; `xyz` writable for `3 x capacity_vertices` doubles.
+ */
+mtcut_status mtcut_live_copy_positions(const struct mtcut_live *live,
+                                       double *xyz,
+                                       size_t capacity_vertices);
+
+/**
+ * Copies the rest positions of the current vertices (three doubles per vertex), as
+ * `mtcut_live_copy_positions` does.
+ *
+ * # Safety
+ * `live` must be a live handle; `xyz` writable for `3 x capacity_vertices` doubles.
+ */
+mtcut_status mtcut_live_copy_rest_positions(const struct mtcut_live *live,
+                                            double *xyz,
+                                            size_t capacity_vertices);
+
+/**
+ * Copies the current tets (four 0-based vertex indices per tet) into `tets`, which holds
+ * `capacity_tets` tets; too small gives `MTCUT_STATUS_BUFFER_TOO_SMALL`, nothing written.
+ *
+ * # Safety
+ * `live` must be a live handle; `tets` writable for `4 x capacity_tets` values.
+ */
+mtcut_status mtcut_live_copy_tets(const struct mtcut_live *live,
+                                  uint32_t *tets,
+                                  size_t capacity_tets);
+
+/**
+ * Copies the model vertex of each current vertex into `ids` (`UINT32_MAX` for a vertex
+ * made by a cut the model has not processed yet), which holds `capacity_vertices` values;
+ * too small gives `MTCUT_STATUS_BUFFER_TOO_SMALL`, nothing written.
+ *
+ * # Safety
+ * `live` must be a live handle; `ids` writable for `capacity_vertices` values.
+ */
+mtcut_status mtcut_live_copy_mt_vertex_ids(const struct mtcut_live *live,
+                                           uint32_t *ids,
+                                           size_t capacity_vertices);
+
+/**
+ * Sets the current (deformed) position of every current vertex: `xyz` holds
+ * `n_vertices` points, exactly `mtcut_live_vertex_count`. A wrong count, a coordinate
+ * that is not finite or a tet the positions would invert or flatten gives
+ * `MTCUT_STATUS_INVALID_ARGUMENT` naming it, and nothing changes.
+ *
+ * # Safety
+ * `live` must be a live handle used by no other thread; `xyz` readable for
+ * `3 x n_vertices` doubles.
+ */
+mtcut_status mtcut_live_set_positions(struct mtcut_live *live,
+                                      const double *xyz,
+                                      size_t n_vertices);
+
+/**
+ * The frontier-first cut: cuts the current mesh, at its current positions, with the
+ * planar convex polygon of `n_points` corners at `polygon_xyz` (given where the body
+ * lies now), and queues the cut of the model. `stats_or_null` receives the current
+ * mesh's cut (`seconds_cut`: the whole call). A polygon that is not planar and convex
+ * gives `MTCUT_STATUS_INVALID_ARGUMENT`, nothing changed.
+ *
+ * # Safety
+ * `live` must be a live handle used by no other thread; `polygon_xyz` readable for
+ * `3 x n_points` doubles; a non-NULL `stats_or_null` writable with `struct_size` set.
+ */
+mtcut_status mtcut_live_cut(struct mtcut_live *live,
+                            const double *polygon_xyz,
+                            size_t n_points,
+                            struct mtcut_cut_stats *stats_or_null);
+
+/**
+ * Cuts the model with the queued cuts, oldest first, while the budget lasts: with
+ * `max_fragments` > 0, no further cut is started once that many fragments were
+ * processed; else with `max_seconds` > 0, once that much time has passed; with both 0,
+ * everything queued. The budget is checked between cuts (a cut is processed whole).
+ * A negative or non-finite `max_seconds` gives `MTCUT_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `live` must be a live handle used by no other thread; a non-NULL `report_or_null`
+ * writable with `struct_size` set.
+ */
+mtcut_status mtcut_live_process_pending(struct mtcut_live *live,
+                                        size_t max_fragments,
+                                        double max_seconds,
+                                        struct mtcut_pending_report *report_or_null);
+
+/**
+ * Extracts the current mesh again as `options_or_null` asks (NULL: the input mesh), its
+ * vertices kept where the host put them (by model vertex; vertices new to it placed by
+ * the deformation around them). Refused with `MTCUT_STATUS_PENDING_WORK` while cuts are
+ * queued (paper section 5: the resolution cannot change until the model has them all), and with
+ * `MTCUT_STATUS_INVALID_ARGUMENT` for invalid options; nothing changes then.
+ *
+ * # Safety
+ * `live` must be a live handle used by no other thread; a non-NULL `options_or_null` a
+ * readable `mtcut_extract_options` with `struct_size` set.
+ */
+mtcut_status mtcut_live_set_resolution(struct mtcut_live *live,
+                                       const struct mtcut_extract_options *options_or_null);
+
+/**
+ * A copy of the current mesh (at the current positions) into `*out`: a new mesh handle.
+ *
+ * # Safety
+ * `live` must be a live handle; `out` a writable pointer.
+ */
+mtcut_status mtcut_live_mesh(const struct mtcut_live *live,
+                             struct mtcut_mesh **out);
+
+/**
+ * A copy of the model as it is now, at rest, into `*out`: a new model handle. Cuts still
+ * queued are not in it (process them first).
+ *
+ * # Safety
+ * `live` must be a live handle; `out` a writable pointer.
+ */
+mtcut_status mtcut_live_mt(const struct mtcut_live *live,
+                           struct mtcut_mt **out);
+
+/**
+ * Releases a live model (NULL is ignored).
+ *
+ * # Safety
+ * A non-NULL `live` must be a live handle, not used afterwards.
+ */
+void mtcut_live_free(struct mtcut_live *live);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -7,7 +7,7 @@ use std::path::Path;
 
 /// Functions that need no boundary: they return static data, or catch panics themselves
 /// (the `*_free` functions, which have no status to report with).
-const NO_STATUS: [&str; 9] = [
+const NO_STATUS: [&str; 10] = [
     "mtcut_status_message",
     "mtcut_last_error_message",
     "mtcut_version",
@@ -17,6 +17,7 @@ const NO_STATUS: [&str; 9] = [
     "mtcut_mesh_free",
     "mtcut_mt_free",
     "mtcut_frontier_free",
+    "mtcut_live_free",
 ];
 
 #[test]

@@ -117,6 +117,25 @@ fn session(dir: &std::path::Path) -> usize {
         let mut part = ptr::null_mut();
         ok(mtcut_mesh_extract_component(extracted, 1, &mut part));
 
+        // A live model: moved, cut frontier first, its queue processed, copied out.
+        let mut live = ptr::null_mut();
+        ok(mtcut_live_new(loaded, ptr::null(), &mut live));
+        let n = mtcut_live_vertex_count(live);
+        let mut xyz = vec![0.0; 3 * n];
+        ok(mtcut_live_copy_positions(live, xyz.as_mut_ptr(), n));
+        for p in xyz.chunks_mut(3) {
+            p[0] += 1e-3 * p[2];
+        }
+        ok(mtcut_live_set_positions(live, xyz.as_ptr(), n));
+        ok(mtcut_live_cut(live, tri.as_ptr(), 3, ptr::null_mut()));
+        let mut live_mesh = ptr::null_mut();
+        ok(mtcut_live_mesh(live, &mut live_mesh));
+        ok(mtcut_live_process_pending(live, 0, 0.0, ptr::null_mut()));
+        let mut live_mt = ptr::null_mut();
+        ok(mtcut_live_mt(live, &mut live_mt));
+        mtcut_mt_free(live_mt);
+        mtcut_live_free(live);
+
         // Failures allocate messages and scratch; they must not keep them.
         let mut none = ptr::null_mut();
         assert_ne!(
@@ -131,7 +150,7 @@ fn session(dir: &std::path::Path) -> usize {
         let mut no_model = ptr::null_mut();
         assert_ne!(mtcut_mt_build(mesh, &bo, &mut no_model), MTCUT_STATUS_OK);
 
-        let meshes = [mesh, extracted, coarse, from_frontier, part];
+        let meshes = [mesh, extracted, coarse, from_frontier, part, live_mesh];
         let fewest = meshes
             .iter()
             .map(|&m| mtcut_mesh_tet_count(m))

@@ -151,7 +151,7 @@ unsafe impl Versioned for mtcut_cut_stats {
 impl mtcut_cut_stats {
     /// Adds a cut's statistics to these (several polygons of one sweep): counts and times
     /// add up, the mesh's state is the last one's.
-    fn add(&mut self, s: &CutStats, build_seconds: f64) {
+    pub(super) fn add(&mut self, s: &CutStats, build_seconds: f64) {
         self.tets_tested += s.tets_tested;
         self.tets_candidate += s.tets_candidate;
         self.tets_cut += s.tets_cut;

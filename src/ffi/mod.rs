@@ -8,7 +8,7 @@
 //! is the only module of the crate allowed to contain `unsafe` code.
 //!
 //! Conventions (DESIGN.md §7; stated for C users in the header's preamble, `cbindgen.toml`):
-//! * opaque handles (`mtcut_mesh`, `mtcut_mt`, `mtcut_frontier`), created by `mtcut_<object>_<verb>` functions into an
+//! * opaque handles (`mtcut_mesh`, `mtcut_mt`, `mtcut_frontier`, `mtcut_live`), created by `mtcut_<object>_<verb>` functions into an
 //!   `out` argument and released by `mtcut_<object>_free`;
 //! * every fallible function returns an `mtcut_status` with a fixed value
 //!   ([`status`]), and leaves a message for `mtcut_last_error_message` ([`error`]);
@@ -41,6 +41,8 @@ mod cut;
 
 mod mt;
 
+mod live;
+
 mod guard;
 mod strings;
 mod versioned;
@@ -48,6 +50,7 @@ mod versioned;
 pub use attributes::*;
 pub use cut::*;
 pub use error::*;
+pub use live::*;
 pub use measure::*;
 pub use mesh::*;
 pub use mt::*;

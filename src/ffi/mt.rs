@@ -34,11 +34,17 @@ pub struct mtcut_mt {
     mt: Arc<Mt>,
 }
 
+impl mtcut_mt {
+    pub(super) fn boxed(mt: Mt) -> *mut mtcut_mt {
+        Box::into_raw(Box::new(mtcut_mt { mt: Arc::new(mt) }))
+    }
+}
+
 /// The model behind a handle argument.
 ///
 /// # Safety
 /// A non-NULL `mt` must be a live handle from this library.
-unsafe fn mt_ref<'a>(mt: *const mtcut_mt) -> FfiResult<&'a Arc<Mt>> {
+pub(super) unsafe fn mt_ref<'a>(mt: *const mtcut_mt) -> FfiResult<&'a Arc<Mt>> {
     // SAFETY: forwarded contract.
     Ok(&unsafe { deref(mt, "mt") }?.mt)
 }
@@ -510,7 +516,7 @@ unsafe impl Versioned for mtcut_extract_options {
 }
 
 impl mtcut_extract_options {
-    const DEFAULT: mtcut_extract_options = mtcut_extract_options {
+    pub(super) const DEFAULT: mtcut_extract_options = mtcut_extract_options {
         struct_size: size_of::<mtcut_extract_options>(),
         threshold: ExtractOptions::DEFAULT.threshold,
         focus: MTCUT_FOCUS_NONE,
@@ -523,7 +529,7 @@ impl mtcut_extract_options {
     };
 
     /// The library's options (their ranges are checked by the extraction).
-    fn to_options(self) -> FfiResult<ExtractOptions> {
+    pub(super) fn to_options(self) -> FfiResult<ExtractOptions> {
         let region = match self.focus {
             MTCUT_FOCUS_NONE => None,
             MTCUT_FOCUS_SPHERE => Some(Region::Sphere {
@@ -549,7 +555,7 @@ impl mtcut_extract_options {
     }
 }
 
-fn extract_failure(e: ExtractError) -> Failure {
+pub(super) fn extract_failure(e: ExtractError) -> Failure {
     Failure::invalid(e.to_string())
 }
 

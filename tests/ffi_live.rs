@@ -1,0 +1,221 @@
+//! The C ABI of the time-critical cut (`mtcut_live_*`), called as C would call it: a bent
+//! fandisk cut frontier first, the queue processed by budget, model ids back on every
+//! vertex, resolution changes refused while work is pending, and bad arguments refused
+//! with a status and a message, outputs untouched.
+
+mod common;
+
+use mtcut::ffi::*;
+use std::ffi::{CStr, CString};
+use std::ptr;
+
+struct Live(*mut mtcut_live);
+impl Drop for Live {
+    fn drop(&mut self) {
+        unsafe { mtcut_live_free(self.0) }
+    }
+}
+
+fn last_error() -> String {
+    unsafe { CStr::from_ptr(mtcut_last_error_message()) }
+        .to_str()
+        .unwrap()
+        .to_owned()
+}
+
+#[track_caller]
+fn ok(status: mtcut_status) {
+    assert_eq!(status, MTCUT_STATUS_OK, "{}", last_error());
+}
+
+#[track_caller]
+fn refused(status: mtcut_status, expected: mtcut_status, function: &str, needle: &str) {
+    let message = last_error();
+    assert_eq!(status, expected, "message: {message}");
+    assert!(
+        message.starts_with(&format!("{function}: ")) && message.contains(needle),
+        "{message:?} should name {function} and contain {needle:?}"
+    );
+}
+
+/// A live fandisk at a middle resolution.
+fn live() -> Live {
+    let path = CString::new(common::data("fandisk.node").to_str().unwrap()).unwrap();
+    unsafe {
+        let mut mesh = ptr::null_mut();
+        ok(mtcut_mesh_read(path.as_ptr(), &mut mesh));
+        let mut mt = ptr::null_mut();
+        ok(mtcut_mt_build(mesh, ptr::null(), &mut mt));
+        mtcut_mesh_free(mesh);
+        let mut st = mtcut_mt_stats {
+            struct_size: size_of::<mtcut_mt_stats>(),
+            ..Default::default()
+        };
+        ok(mtcut_mt_statistics(mt, &mut st));
+        let mut eo: mtcut_extract_options = std::mem::zeroed();
+        eo.struct_size = size_of::<mtcut_extract_options>();
+        ok(mtcut_extract_options_default(&mut eo));
+        eo.threshold = (st.min_error * st.max_error).sqrt();
+        let mut live = ptr::null_mut();
+        ok(mtcut_live_new(mt, &eo, &mut live));
+        mtcut_mt_free(mt); // the live model holds its own copy
+        Live(live)
+    }
+}
+
+fn positions(l: &Live) -> Vec<f64> {
+    let n = unsafe { mtcut_live_vertex_count(l.0) };
+    let mut xyz = vec![0.0; 3 * n];
+    ok(unsafe { mtcut_live_copy_positions(l.0, xyz.as_mut_ptr(), n) });
+    xyz
+}
+
+fn ids(l: &Live) -> Vec<u32> {
+    let n = unsafe { mtcut_live_vertex_count(l.0) };
+    let mut ids = vec![0; n];
+    ok(unsafe { mtcut_live_copy_mt_vertex_ids(l.0, ids.as_mut_ptr(), n) });
+    ids
+}
+
+fn valid_mesh(l: &Live) -> bool {
+    unsafe {
+        let mut m = ptr::null_mut();
+        ok(mtcut_live_mesh(l.0, &mut m));
+        let mut valid = false;
+        ok(mtcut_mesh_validate(
+            m,
+            &mut valid,
+            ptr::null_mut(),
+            0,
+            ptr::null_mut(),
+        ));
+        mtcut_mesh_free(m);
+        valid
+    }
+}
+
+#[test]
+fn a_bent_body_is_cut_frontier_first_then_the_model_catches_up() {
+    let l = live();
+    let n = unsafe { mtcut_live_vertex_count(l.0) };
+    // Bend: x moves with sin(z), by 0.2% of the size (no tet inverted).
+    let mut xyz = positions(&l);
+    for p in xyz.chunks_mut(3) {
+        p[0] += 0.002 * (3.0 * p[2]).sin();
+    }
+    ok(unsafe { mtcut_live_set_positions(l.0, xyz.as_ptr(), n) });
+    assert_eq!(positions(&l), xyz);
+    let mut rest = vec![0.0; 3 * n];
+    ok(unsafe { mtcut_live_copy_rest_positions(l.0, rest.as_mut_ptr(), n) });
+    assert_ne!(rest, xyz);
+
+    // Straight through the middle, given where the body lies.
+    let square = [
+        -5.0, -5.0, 0.01, 5.0, -5.0, 0.01, 5.0, 5.0, 0.01, -5.0, 5.0, 0.01,
+    ];
+    let mut cs = mtcut_cut_stats {
+        struct_size: size_of::<mtcut_cut_stats>(),
+        ..Default::default()
+    };
+    ok(unsafe { mtcut_live_cut(l.0, square.as_ptr(), 4, &mut cs) });
+    assert!(cs.tets_cut > 0 && cs.seconds_cut > 0.0, "{cs:?}");
+    assert_eq!(unsafe { mtcut_live_pending_cuts(l.0) }, 1);
+    assert_eq!(unsafe { mtcut_live_tet_count(l.0) }, cs.tets_after);
+    assert!(valid_mesh(&l));
+    // New vertices have no model vertex yet.
+    assert!(ids(&l).contains(&u32::MAX));
+
+    // While pending, the resolution stays.
+    refused(
+        unsafe { mtcut_live_set_resolution(l.0, ptr::null()) },
+        MTCUT_STATUS_PENDING_WORK,
+        "mtcut_live_set_resolution",
+        "1 cut(s) are still pending",
+    );
+    let mut r = mtcut_pending_report {
+        struct_size: size_of::<mtcut_pending_report>(),
+        ..Default::default()
+    };
+    ok(unsafe { mtcut_live_process_pending(l.0, 1, 0.0, &mut r) });
+    assert_eq!((r.cuts_done, r.cuts_left, r.remeshed), (1, 0, 0), "{r:?}");
+    assert!(r.fragments > 0 && r.seconds > 0.0, "{r:?}");
+    assert!(
+        !ids(&l).contains(&u32::MAX),
+        "every vertex named by its model vertex"
+    );
+    assert!(valid_mesh(&l));
+    unsafe {
+        let mut mt = ptr::null_mut();
+        ok(mtcut_live_mt(l.0, &mut mt));
+        let mut st = mtcut_mt_stats {
+            struct_size: size_of::<mtcut_mt_stats>(),
+            ..Default::default()
+        };
+        ok(mtcut_mt_statistics(mt, &mut st));
+        // (The model's own validation is tests/mt_live.rs's, on the Rust side.)
+        assert_eq!(st.components, 2, "the cut went through");
+        mtcut_mt_free(mt);
+    }
+    // Nothing pending: a new resolution is taken.
+    ok(unsafe { mtcut_live_set_resolution(l.0, ptr::null()) });
+    assert!(valid_mesh(&l));
+}
+
+#[test]
+fn bad_arguments_are_refused_and_change_nothing() {
+    let l = live();
+    let n = unsafe { mtcut_live_vertex_count(l.0) };
+    let xyz = positions(&l);
+    let name = "mtcut_live_set_positions";
+    let s = unsafe { mtcut_live_set_positions(l.0, xyz.as_ptr(), n - 1) };
+    refused(s, MTCUT_STATUS_INVALID_ARGUMENT, name, "positions given");
+    let mut nan = xyz.clone();
+    nan[7] = f64::NAN;
+    let s = unsafe { mtcut_live_set_positions(l.0, nan.as_ptr(), n) };
+    refused(
+        s,
+        MTCUT_STATUS_INVALID_ARGUMENT,
+        name,
+        "vertex 2 is not finite",
+    );
+    let s = unsafe { mtcut_live_set_positions(l.0, ptr::null(), n) };
+    refused(s, MTCUT_STATUS_NULL_ARGUMENT, name, "xyz");
+    let s = unsafe { mtcut_live_set_positions(ptr::null_mut(), xyz.as_ptr(), n) };
+    refused(s, MTCUT_STATUS_NULL_ARGUMENT, name, "live");
+    assert_eq!(positions(&l), xyz, "positions unchanged");
+
+    // Too small an output: nothing written.
+    let mut small = vec![-1.0; 3 * (n - 1)];
+    let s = unsafe { mtcut_live_copy_positions(l.0, small.as_mut_ptr(), n - 1) };
+    refused(
+        s,
+        MTCUT_STATUS_BUFFER_TOO_SMALL,
+        "mtcut_live_copy_positions",
+        "xyz",
+    );
+    assert!(small.iter().all(|&x| x == -1.0));
+
+    // A polygon with two corners, a negative time budget.
+    let two = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0];
+    let s = unsafe { mtcut_live_cut(l.0, two.as_ptr(), 2, ptr::null_mut()) };
+    refused(
+        s,
+        MTCUT_STATUS_INVALID_ARGUMENT,
+        "mtcut_live_cut",
+        "polygon_xyz",
+    );
+    assert_eq!(unsafe { mtcut_live_pending_cuts(l.0) }, 0);
+    let s = unsafe { mtcut_live_process_pending(l.0, 0, -1.0, ptr::null_mut()) };
+    refused(
+        s,
+        MTCUT_STATUS_INVALID_ARGUMENT,
+        "mtcut_live_process_pending",
+        "max_seconds",
+    );
+    let mut out = ptr::null_mut();
+    let s = unsafe { mtcut_live_new(ptr::null(), ptr::null(), &mut out) };
+    refused(s, MTCUT_STATUS_NULL_ARGUMENT, "mtcut_live_new", "mt");
+    assert!(out.is_null());
+    assert_eq!(unsafe { mtcut_live_vertex_count(ptr::null()) }, 0);
+    unsafe { mtcut_live_free(ptr::null_mut()) };
+}
