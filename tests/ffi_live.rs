@@ -4,9 +4,11 @@
 //! with a status and a message, outputs untouched.
 
 mod common;
+mod ffi_common;
 
+use ffi_common::{ok, refused};
 use mtcut::ffi::*;
-use std::ffi::{CStr, CString};
+use std::ffi::CString;
 use std::ptr;
 
 struct Live(*mut mtcut_live);
@@ -14,28 +16,6 @@ impl Drop for Live {
     fn drop(&mut self) {
         unsafe { mtcut_live_free(self.0) }
     }
-}
-
-fn last_error() -> String {
-    unsafe { CStr::from_ptr(mtcut_last_error_message()) }
-        .to_str()
-        .unwrap()
-        .to_owned()
-}
-
-#[track_caller]
-fn ok(status: mtcut_status) {
-    assert_eq!(status, MTCUT_STATUS_OK, "{}", last_error());
-}
-
-#[track_caller]
-fn refused(status: mtcut_status, expected: mtcut_status, function: &str, needle: &str) {
-    let message = last_error();
-    assert_eq!(status, expected, "message: {message}");
-    assert!(
-        message.starts_with(&format!("{function}: ")) && message.contains(needle),
-        "{message:?} should name {function} and contain {needle:?}"
-    );
 }
 
 /// A live fandisk at a middle resolution.

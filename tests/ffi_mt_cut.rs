@@ -7,7 +7,9 @@
 //! wrappers below.
 
 mod common;
+mod ffi_common;
 
+use ffi_common::{last_error, ok, refused};
 use mtcut::ffi::*;
 use std::ffi::{CStr, CString, c_int, c_void};
 use std::ptr;
@@ -38,29 +40,6 @@ impl Drop for Front {
     fn drop(&mut self) {
         unsafe { mtcut_frontier_free(self.0) }
     }
-}
-
-fn last_error() -> String {
-    unsafe { CStr::from_ptr(mtcut_last_error_message()) }
-        .to_str()
-        .unwrap()
-        .to_owned()
-}
-
-#[track_caller]
-fn ok(status: mtcut_status) {
-    assert_eq!(status, MTCUT_STATUS_OK, "{}", last_error());
-}
-
-/// Asserts a refusal: `expected`, with a message naming `function` and containing `needle`.
-#[track_caller]
-fn refused(status: mtcut_status, expected: mtcut_status, function: &str, needle: &str) {
-    let message = last_error();
-    assert_eq!(status, expected, "message: {message}");
-    assert!(
-        message.starts_with(&format!("{function}: ")) && message.contains(needle),
-        "{message:?} should name {function} and contain {needle:?}"
-    );
 }
 
 fn cube() -> Mesh {
