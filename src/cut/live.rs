@@ -52,6 +52,10 @@
 //! * A queued cut is processed whole: [`process_pending`](LiveMt::process_pending) checks
 //!   its budget between cuts, so it may overrun by one cut (the DAG update of a cut is one
 //!   step over all its fragments, [`super::mt_cut`]).
+//! * A queued cut the MT refuses (a model outgrowing its ids, a fold whose fallback polygon
+//!   is degenerate) stays queued, the MT unchanged, and every later
+//!   [`process_pending`](LiveMt::process_pending) reports the same error: the current
+//!   mesh, already cut, stays usable, but the resolution cannot change again.
 //! * A resolution given as a budget may extract another frontier after a cut (cuts add
 //!   tets): then the current mesh is replaced rather than matched.
 //! * Vertices that a resolution change brings in (not in the current mesh before) are
