@@ -155,7 +155,7 @@ fn queued_cuts_are_processed_within_their_budget_and_block_resolution_changes() 
         let r = l
             .process_pending(PendingBudget::Fragments(1))
             .expect("process");
-        assert_eq!((r.cuts.len(), r.cuts_left), (1, left));
+        assert_eq!((r.cuts.len(), r.cuts_left, r.remeshed), (1, left, false));
         assert!(r.fragments > 0);
         check(&l, &format!("{left} left"));
     }

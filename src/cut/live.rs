@@ -28,12 +28,13 @@
 //!    placement. An undeformed body needs none: the MT is cut by the polygon itself,
 //!    exactly as [`MtCutter::cut`] would.
 //!
-//! After each queued cut, the MT's extraction at the live resolution must hold exactly the
-//! current tets (matched by their vertices' rest positions): the current mesh *maps back
-//! exactly*, and [`LiveMt::mt_vertex_ids`] names the MT vertex of each current vertex
-//! again. Where the two parts decided differently, the current mesh is replaced, once the
-//! queue is empty, by that extraction, the host's positions carried over by MT vertex, and
-//! the report says so ([`PendingReport::remeshed`]).
+//! Once the queue is empty (before, the current mesh holds cuts the MT does not have yet),
+//! the MT's extraction at the live resolution must hold exactly the current tets (matched
+//! by their vertices' rest positions): the current mesh *maps back exactly*, and
+//! [`LiveMt::mt_vertex_ids`] names the MT vertex of each current vertex again. Where the
+//! two parts decided differently, the current mesh is replaced by that extraction, the
+//! host's positions carried over by MT vertex, and the report says so
+//! ([`PendingReport::remeshed`]).
 //!
 //! While cuts are pending the resolution cannot change ([`LiveMt::set_resolution`] refuses,
 //! naming the pending cuts), as the paper requires; the current mesh stays usable, and can
@@ -172,6 +173,9 @@ pub struct LiveMt {
     /// A queued cut was decided differently on the MT: replace the current mesh once the
     /// queue is empty.
     remesh_due: bool,
+    /// A processed cut changed the MT or the current mesh: match them once the queue is
+    /// empty (before, the current mesh holds cuts the MT does not have yet).
+    match_due: bool,
     /// Per MT vertex made by a cut of this model: the combination it was made as (indexed
     /// from `first_cut_vertex`).
     cut_origins: Vec<VertexOrigin>,
@@ -215,6 +219,7 @@ impl LiveMt {
             deformed: false,
             pending: VecDeque::new(),
             remesh_due: false,
+            match_due: false,
         })
     }
 
@@ -352,11 +357,15 @@ impl LiveMt {
             report.fragments += stats.fragments_involved;
             report.cuts.push(stats);
             // A cut that changed neither the MT nor the current mesh leaves the match as is.
-            let mt_changed = stats.tets_cut > 0
+            self.match_due |= changed
+                || stats.tets_cut > 0
                 || stats.vertex_copies > 0
                 || stats.ghosts_split > 0
                 || stats.crack_ghosts > 0;
-            if !self.remesh_due && (changed || mt_changed) && !self.resolve()? {
+        }
+        if self.pending.is_empty() && self.match_due {
+            self.match_due = false;
+            if !self.remesh_due && !self.resolve()? {
                 self.remesh_due = true;
             }
         }
@@ -454,7 +463,7 @@ impl LiveMt {
         }
     }
 
-    /// Names the MT vertex of every current vertex after a queued cut: the MT's extraction
+    /// Names the MT vertex of every current vertex, the queue empty: the MT's extraction
     /// at the live resolution must hold exactly the current tets (matched by the rest
     /// positions of their vertices: no two tets of a valid mesh have the same four), each
     /// current vertex then being the extraction's vertex at its place in the matched tets.
