@@ -129,6 +129,9 @@ pub(super) struct Scratch {
     order: Vec<(f64, u32)>,
     link: LinkScratch,
     faces: Vec<NewFace>,
+    /// Where the last boundary check put each charged point (an index into `faces`, in
+    /// [`Simplifier::for_each_charged_point`]'s order); see [`Simplifier::check`].
+    pub placed: Vec<u32>,
 }
 
 /// A tet in a vertex's star: its pool id and, inline, its vertices, so that a star is read
@@ -154,32 +157,11 @@ struct StarTet {
 struct NewFace {
     from: u32,
     corners: [u32; 3],
+    /// The corners' positions (every charged point is measured against them).
+    at: [DVec3; 3],
     deviation: f64,
 }
 
-/// Subdivisions per edge of the grid a new boundary face is sampled on.
-const GRID: u8 = 8;
-
-/// The grid points of a new boundary face other than its corners, as barycentric
-/// coordinates (in `1 / GRID`) of its second and third corner.
-const GRID_POINTS: [(u8, u8); ((GRID as usize + 1) * (GRID as usize + 2)) / 2 - 3] = {
-    let mut out = [(0u8, 0u8); ((GRID as usize + 1) * (GRID as usize + 2)) / 2 - 3];
-    let mut k = 0;
-    let mut i = 0;
-    while i <= GRID {
-        let mut j = 0;
-        while i + j <= GRID {
-            let corner = (i == 0 && j == 0) || i == GRID || j == GRID;
-            if !corner {
-                out[k] = (i, j);
-                k += 1;
-            }
-            j += 1;
-        }
-        i += 1;
-    }
-    out
-};
 /// The simplifier's state: the MT being recorded (pool with creator/destroyer columns) and
 /// the current mesh (stars, boundary bookkeeping).
 pub(super) struct Simplifier<'a, E: TetError + ?Sized> {
@@ -430,13 +412,24 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
 
     /// A queued candidate, checked against the exact rules: itself (with its exact
     /// priority) if it passes, else the best candidate of its vertex that passes them all.
+    /// When it passes, `s.placed` holds where its boundary points go (what
+    /// [`Simplifier::execute`] needs): the placement is worked out here, in the round's
+    /// parallel checks, instead of again in the sequential execution.
     pub(super) fn check(
         &self,
         c: &Candidate,
         s: &mut Scratch,
         rej: &mut Rejections,
     ) -> Option<Candidate> {
+        s.placed.clear();
         if c.checked {
+            // Checked when evaluated, and nothing around it changed since: the boundary
+            // check passes again and places the points.
+            if self.class[c.v as usize] != VertexClass::Interior {
+                s.faces.clear();
+                let passed = self.boundary_check(c.v, c.w, s);
+                debug_assert!(passed, "a checked candidate fails its boundary check");
+            }
             return Some(*c);
         }
         // The link test needs v's neighbour set, which evaluation leaves in the scratch of
@@ -625,20 +618,14 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
             }
             // Coarse-to-original: points of the new face on a grid (its corners are
             // original vertices, on the original surface by definition).
-            let mut deviation = 0.0f64;
             let seeds = [new[0], new[1], new[2], v];
-            let mut hint = u32::MAX;
-            for (i, j) in GRID_POINTS {
-                let (a, b) = (i as f64 / GRID as f64, j as f64 / GRID as f64);
-                let q = pn[0] * (1.0 - a - b) + pn[1] * a + pn[2] * b;
-                match self.surface.distance_within(q, self.tol, &seeds, &mut hint) {
-                    Some(d) => deviation = deviation.max(d),
-                    None => return false,
-                }
-            }
+            let Some(deviation) = self.surface.grid_within(pn, self.tol, &seeds) else {
+                return false;
+            };
             s.faces.push(NewFace {
                 from: inc.id,
                 corners: new,
+                at: pn,
                 deviation,
             });
         }
@@ -648,12 +635,16 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
         // Original-to-coarse: every point of the original surface this patch answers for
         // within the tolerance of the new faces.
         let mut ok = true;
+        s.placed.clear();
         self.for_each_charged_point(v, |from, q| {
             if !ok {
                 return;
             }
             match self.place(&s.faces, from, q) {
-                Some((k, d)) => s.faces[k].deviation = s.faces[k].deviation.max(d),
+                Some((k, d)) => {
+                    s.faces[k].deviation = s.faces[k].deviation.max(d);
+                    s.placed.push(k as u32);
+                }
                 None => ok = false,
             }
         });
@@ -666,14 +657,14 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
     /// even that is beyond the tolerance.
     fn place(&self, faces: &[NewFace], from: u32, q: DVec3) -> Option<(usize, f64)> {
         if let Some(k) = faces.iter().position(|f| f.from == from) {
-            let d = point_triangle_distance(q, &faces[k].corners.map(|x| self.pos[x as usize]));
+            let d = point_triangle_distance(q, &faces[k].at);
             if d <= self.tol {
                 return Some((k, d));
             }
         }
         let mut best = (0, f64::INFINITY);
         for (k, f) in faces.iter().enumerate() {
-            let d = point_triangle_distance(q, &f.corners.map(|x| self.pos[x as usize]));
+            let d = point_triangle_distance(q, &f.at);
             if d < best.1 {
                 best = (k, d);
             }
@@ -716,11 +707,15 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
     /// and new tets join the stars of their vertices in pool order, exactly as one collapse
     /// after the other would leave them. The vertices whose star changed are put in
     /// `changed` (sorted).
-    pub(super) fn execute_round(&mut self, round: &[Candidate], changed: &mut Vec<u32>) {
+    pub(super) fn execute_round(
+        &mut self,
+        round: &[(Candidate, Vec<u32>)],
+        changed: &mut Vec<u32>,
+    ) {
         changed.clear();
         let mut incoming: Vec<(u32, Incident)> = Vec::new();
-        for c in round {
-            self.execute(c, changed, &mut incoming);
+        for (c, placed) in round {
+            self.execute(c, placed, changed, &mut incoming);
         }
         changed.sort_unstable();
         changed.dedup();
@@ -767,9 +762,12 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
     /// Collapses `c.v` onto `c.w`, recording the next fragment: the record and the
     /// boundary bookkeeping; the stars of the other vertices are left to `execute_round`
     /// (their new incidences go to `incoming`, the vertices to `changed`).
+    /// `placed`: where the check put each point the boundary patch answers for (see
+    /// [`Simplifier::check`]).
     fn execute(
         &mut self,
         c: &Candidate,
+        placed: &[u32],
         changed: &mut Vec<u32>,
         incoming: &mut Vec<(u32, Incident)>,
     ) {
@@ -777,9 +775,21 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
         let (v, w) = (c.v, c.w);
         let v_class = self.class[v as usize];
         let boundary = v_class != VertexClass::Interior;
-        let mut points: Vec<(u32, DVec3)> = Vec::new();
+        // The points of the original surface this patch answers for, by the new boundary
+        // face they are charged to from now on (the new ghosts, in floor order).
+        let mut per_face: Vec<Vec<DVec3>> = Vec::new();
         if boundary {
-            self.for_each_charged_point(v, |from, q| points.push((from, q)));
+            let faces = self.stars[v as usize]
+                .iter()
+                .filter(|inc| is_ghost(&inc.tet) && !contains(&inc.tet, w))
+                .count();
+            per_face.resize_with(faces, Vec::new);
+            let mut i = 0;
+            self.for_each_charged_point(v, |_, q| {
+                per_face[placed[i] as usize].push(q);
+                i += 1;
+            });
+            debug_assert_eq!(i, placed.len(), "the check placed other points");
         }
         let floor = std::mem::take(&mut self.stars[v as usize]);
         let first_changed = changed.len();
@@ -791,14 +801,14 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
                 }
             }
             self.destroyer[t as usize] = fragment;
-            if boundary {
+            if boundary && is_ghost(&tet) {
                 self.charges.remove(&t);
             }
             if !is_ghost(&tet) && contains(&tet, w) {
                 self.live_real -= 1;
             }
         }
-        let mut new_ghosts: Vec<(u32, u32)> = Vec::new();
+        let mut new_ghosts: Vec<u32> = Vec::new();
         for inc in &floor {
             let (t, tet) = (inc.id, inc.tet);
             if contains(&tet, w) {
@@ -816,7 +826,7 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
                 }
             }
             if is_ghost(&nt) {
-                new_ghosts.push((t, id));
+                new_ghosts.push(id);
             }
         }
         self.class[v as usize] = VertexClass::Removed;
@@ -831,23 +841,9 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
                 }
             }
         }
-        if boundary {
-            let faces: Vec<NewFace> = new_ghosts
-                .iter()
-                .map(|&(from, g)| {
-                    let t = self.tets[g as usize];
-                    NewFace {
-                        from,
-                        corners: [t[0].0, t[1].0, t[2].0],
-                        deviation: 0.0,
-                    }
-                })
-                .collect();
-            for (from, q) in points {
-                // Feasibility placed every point within the tolerance; the same rule
-                // places it again here (the nearest face if the first guess is too far).
-                let k = self.place(&faces, from, q).map_or(0, |p| p.0);
-                self.charges.entry(new_ghosts[k].1).or_default().push(q);
+        for (g, points) in new_ghosts.into_iter().zip(per_face) {
+            if !points.is_empty() {
+                self.charges.insert(g, points);
             }
         }
         self.raw_error.push(c.priority);

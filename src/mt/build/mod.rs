@@ -734,19 +734,21 @@ fn simplify<E: TetError + ?Sized>(
         // independent, so each is checked against the mesh as it is now. A candidate that
         // fails leaves its (locked) neighbourhood alone this round; its vertex's best
         // legal collapse, if any, is queued instead.
-        let checks: Vec<(Option<Candidate>, Rejections)> = {
+        let checks: Vec<(Option<Candidate>, Rejections, Vec<u32>)> = {
             let s: &Simplifier<'_, E> = sim;
             selected
                 .par_iter()
                 .map(|c| {
                     let mut rej = Rejections::default();
-                    let r = collapse::with_scratch(|scratch| s.check(c, scratch, &mut rej));
-                    (r, rej)
+                    collapse::with_scratch(|scratch| {
+                        let r = s.check(c, scratch, &mut rej);
+                        (r, rej, std::mem::take(&mut scratch.placed))
+                    })
                 })
                 .collect()
         };
         let mut accepted = Vec::with_capacity(selected.len());
-        for (c, (r, rej)) in selected.iter().zip(checks) {
+        for (c, (r, rej, placed)) in selected.iter().zip(checks) {
             if let Some(value) = rej.bad_error {
                 return Err(BuildError::BadErrorValue {
                     metric: sim.metric.name().to_string(),
@@ -755,7 +757,7 @@ fn simplify<E: TetError + ?Sized>(
             }
             stats.rejected.add(&rej);
             match r {
-                Some(k) if k.w == c.w => accepted.push(k),
+                Some(k) if k.w == c.w => accepted.push((k, placed)),
                 Some(mut other) => {
                     let t = &mut tickets[c.v as usize];
                     *t = t.wrapping_add(1);

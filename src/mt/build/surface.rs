@@ -120,6 +120,69 @@ impl Surface {
     }
 }
 
+/// Subdivisions per edge of the grid a new boundary face is sampled on.
+const GRID: u8 = 8;
+
+/// The grid points of a new boundary face other than its corners, as barycentric
+/// coordinates (in `1 / GRID`) of its second and third corner.
+const GRID_POINTS: [(u8, u8); ((GRID as usize + 1) * (GRID as usize + 2)) / 2 - 3] = {
+    let mut out = [(0u8, 0u8); ((GRID as usize + 1) * (GRID as usize + 2)) / 2 - 3];
+    let mut k = 0;
+    let mut i = 0;
+    while i <= GRID {
+        let mut j = 0;
+        while i + j <= GRID {
+            let corner = (i == 0 && j == 0) || i == GRID || j == GRID;
+            if !corner {
+                out[k] = (i, j);
+                k += 1;
+            }
+            j += 1;
+        }
+        i += 1;
+    }
+    out
+};
+
+impl Surface {
+    /// Whether every point of triangle `t` on the grid of [`GRID`] subdivisions per edge
+    /// (its corners excepted: they are vertices of the surface) lies within `radius` of
+    /// the surface; if so, an upper bound of their largest distance.
+    ///
+    /// The distance to the surface is 1-Lipschitz, so a point searched for with bound
+    /// `u` vouches for every point within `radius - u` of it (with bound `u` plus the
+    /// distance between them): most grid points of a face that is small next to the
+    /// tolerance need no search of their own. The answer is the same as searching every
+    /// grid point; only the bound reported can be larger.
+    pub(super) fn grid_within(&self, t: [DVec3; 3], radius: f64, seeds: &[u32]) -> Option<f64> {
+        let g = GRID as f64;
+        let mut hint = u32::MAX;
+        let mut deviation = 0.0f64;
+        // Searched points with their bounds, newest last (a few: neighbours come in order).
+        let mut anchors: [(DVec3, f64); 4] = [(DVec3::ZERO, f64::INFINITY); 4];
+        let mut next = 0;
+        for (i, j) in GRID_POINTS {
+            let (a, b) = (i as f64 / g, j as f64 / g);
+            let q = t[0] * (1.0 - a - b) + t[1] * a + t[2] * b;
+            let vouched = anchors.iter().find_map(|&(p, u)| {
+                let d = u + (q - p).length();
+                (d <= radius).then_some(d)
+            });
+            let d = match vouched {
+                Some(d) => d,
+                None => {
+                    let d = self.distance_within(q, radius, seeds, &mut hint)?;
+                    anchors[next % anchors.len()] = (q, d);
+                    next += 1;
+                    d
+                }
+            };
+            deviation = deviation.max(d);
+        }
+        Some(deviation)
+    }
+}
+
 fn box_distance_squared(b: &Aabb, p: DVec3) -> f64 {
     (p.clamp(b.min, b.max) - p).length_squared()
 }
