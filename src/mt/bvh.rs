@@ -10,7 +10,7 @@
 //! to four items. Nodes are stored depth-first, the left child right after its
 //! parent, so a traversal walks memory mostly forwards.
 
-use super::{BoxF32, FragmentKind, Mt};
+use super::{BoxFrame, FragmentKind, Mt, QuantBox};
 use crate::geom::{Aabb, DVec3};
 use crate::mesh::FragmentId;
 
@@ -235,7 +235,9 @@ pub struct FragmentBvh {
     /// Box and error of each item, in the hierarchy's item order: a walk reads them with
     /// the leaf instead of from fragment rows scattered over the MT (which, cold after an
     /// extraction, cost a cache miss each).
-    entries: Vec<(BoxF32, f64)>,
+    entries: Vec<(QuantBox, f64)>,
+    /// The MT's frame, to expand the boxes exactly as [`Mt::fragment_bbox`] does.
+    frame: BoxFrame,
 }
 
 /// A fragment a [`FragmentBvh`] walk reached.
@@ -265,7 +267,11 @@ impl FragmentBvh {
             .iter()
             .map(|&i| (mt.bbox[i as usize], mt.error[i as usize]))
             .collect();
-        FragmentBvh { bvh, entries }
+        FragmentBvh {
+            bvh,
+            entries,
+            frame: mt.frame,
+        }
     }
 
     /// Calls `on_hit` for every fragment in a leaf reached by descending only into nodes
@@ -276,7 +282,7 @@ impl FragmentBvh {
                 let (bbox, error) = self.entries[k];
                 on_hit(FragmentHit {
                     fragment: FragmentId(self.bvh.items[k]),
-                    bbox: bbox.to_aabb(),
+                    bbox: self.frame.expand(bbox),
                     error,
                 });
             }
@@ -299,7 +305,7 @@ impl FragmentBvh {
     }
 
     pub fn heap_bytes(&self) -> usize {
-        self.bvh.heap_bytes() + self.entries.capacity() * std::mem::size_of::<(BoxF32, f64)>()
+        self.bvh.heap_bytes() + self.entries.capacity() * std::mem::size_of::<(QuantBox, f64)>()
     }
 }
 

@@ -205,7 +205,9 @@ impl Mt {
         match self.kind[f] {
             FragmentKind::Root => false,
             FragmentKind::Drain => true,
-            FragmentKind::Collapse => self.error[f] > options.tau(&self.bbox[f].to_aabb()),
+            FragmentKind::Collapse => {
+                self.error[f] > options.tau(&self.fragment_bbox(FragmentId::from_usize(f)))
+            }
         }
     }
 
@@ -255,9 +257,10 @@ impl Mt {
             let own = match self.kind[f] {
                 FragmentKind::Root => f64::NEG_INFINITY,
                 FragmentKind::Drain => f64::INFINITY,
-                FragmentKind::Collapse => {
-                    ratio(self.error[f], options.tau(&self.bbox[f].to_aabb()))
-                }
+                FragmentKind::Collapse => ratio(
+                    self.error[f],
+                    options.tau(&self.fragment_bbox(FragmentId::from_usize(f))),
+                ),
             };
             demand[f] = self
                 .predecessors(FragmentId::from_usize(f))

@@ -324,7 +324,7 @@ impl Mt {
                     b.grow(self.positions[v.idx()]);
                 }
             }
-            if super::BoxF32::enclosing(&b) != self.bbox[f] {
+            if self.frame.enclose(&b) != self.bbox[f] {
                 r.add(MtViolationKind::BboxMismatch, || format!("fragment {f}"));
             }
         }
