@@ -655,11 +655,11 @@ impl QuantBox {
     };
 }
 
-/// The box of every vertex of an MT, divided into 65535 steps per axis.
+/// The box of every vertex of an MT, divided into 65535 steps per axis (the last step
+/// reaching at least to its far side).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct BoxFrame {
     min: DVec3,
-    max: DVec3,
     step: DVec3,
 }
 
@@ -671,21 +671,22 @@ impl BoxFrame {
         if b.is_empty() {
             return BoxFrame::default();
         }
-        BoxFrame {
-            min: b.min,
-            max: b.max,
-            step: (b.max - b.min) / f64::from(Self::STEPS),
+        let mut step = (b.max - b.min) / f64::from(Self::STEPS);
+        for axis in 0..3 {
+            // One expression decodes every coordinate (no branch for the far end): the
+            // last step must reach the far side despite rounding.
+            while b.min[axis] + f64::from(Self::STEPS) * step[axis] < b.max[axis] {
+                // The next larger double (step > 0 here: the axis is not flat).
+                step[axis] = f64::from_bits(step[axis].to_bits() + 1);
+            }
         }
+        BoxFrame { min: b.min, step }
     }
 
-    /// Coordinate `q` on `axis`; the ends are the frame's own, exactly.
+    /// Coordinate `q` on `axis`.
     #[inline]
     fn at(&self, axis: usize, q: u16) -> f64 {
-        match q {
-            0 => self.min[axis],
-            Self::STEPS => self.max[axis],
-            _ => self.min[axis] + f64::from(q) * self.step[axis],
-        }
+        self.min[axis] + f64::from(q) * self.step[axis]
     }
 
     /// The smallest quantised box containing `b` (which lies in the frame).
@@ -726,7 +727,8 @@ impl BoxFrame {
         if q == QuantBox::EMPTY {
             return Aabb::EMPTY;
         }
-        let at = |q: [u16; 3]| DVec3::new(self.at(0, q[0]), self.at(1, q[1]), self.at(2, q[2]));
+        // Component-wise, the arithmetic of `at`.
+        let at = |q: [u16; 3]| self.min + DVec3::from_array(q.map(f64::from)) * self.step;
         Aabb {
             min: at(q.min),
             max: at(q.max),
@@ -836,6 +838,7 @@ mod tests {
             DVec3::new(7.5, 1e6 + 0.25, 0.1 + 1e-9),
         ];
         let frame = BoxFrame::of(&pts);
+        let whole = Aabb::from_points(&pts);
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut unit = || {
             seed ^= seed << 13;
@@ -845,7 +848,7 @@ mod tests {
         };
         for _ in 0..10_000 {
             let p =
-                |u: f64, v: f64, w: f64| frame.min + (frame.max - frame.min) * DVec3::new(u, v, w);
+                |u: f64, v: f64, w: f64| whole.min + (whole.max - whole.min) * DVec3::new(u, v, w);
             let (a, b) = (p(unit(), unit(), unit()), p(unit(), unit(), unit()));
             let b = Aabb {
                 min: a.min(b),
@@ -857,20 +860,23 @@ mod tests {
                 e.min.cmple(b.min).all() && e.max.cmpge(b.max).all(),
                 "{b:?} -> {e:?}"
             );
-            let slack = (frame.max - frame.min) / 65535.0 * 1.001;
+            let slack = (whole.max - whole.min) / 65535.0 * 1.001;
             assert!((b.min - e.min).cmple(slack).all() && (e.max - b.max).cmple(slack).all());
         }
-        // The frame's own box, a point, nothing.
-        let whole = Aabb {
-            min: frame.min,
-            max: frame.max,
-        };
-        assert_eq!(frame.expand(frame.enclose(&whole)), whole);
+        // The frame's own box (to within rounding of its far side), a point, nothing.
+        let e = frame.expand(frame.enclose(&whole));
+        assert!(e.min == whole.min && e.max.cmpge(whole.max).all());
+        assert!(
+            (e.max - whole.max)
+                .cmple((whole.max - whole.min) * 1e-12)
+                .all()
+        );
         let point = Aabb {
             min: pts[1],
             max: pts[1],
         };
-        assert_eq!(frame.expand(frame.enclose(&point)), point);
+        let e = frame.expand(frame.enclose(&point));
+        assert!(e.min.cmple(point.min).all() && e.max.cmpge(point.max).all());
         assert!(frame.expand(frame.enclose(&Aabb::EMPTY)).is_empty());
         // A frame flat in one axis (all boxes span it).
         let flat = BoxFrame::of(&[DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0)]);
