@@ -154,8 +154,18 @@ fn shallow_path(b: &Aabb, from: (f64, f64), to: (f64, f64), steps: usize) -> Vec
 /// the first (T).
 #[test]
 #[ignore = "KNOWN FAILURE (issue 7 open): passes on fandisk and liver; on pinion the second \
-            step of the T leaves doubled faces in four fragments (FragmentNotConforming), \
-            not analysed yet"]
+            step of the T (in the plane of the first) leaves doubled ghost faces in four \
+            fragments (FragmentNotConforming). The first step's lips lie on the plane behind \
+            the new contour; settle_plane_vertices joins both lips into one cluster through \
+            the first step's bottom tips (on the plane, shared by both lips), so every lip \
+            vertex keeps its exact side, rounding noise: a negative-lip vertex taken for \
+            positive makes its lip tets straddle and 3 front tips unsnapped. Deciding per \
+            vertex (clusters joined only through flat tets) removes that, but the bottom \
+            tips need a side per lip: with their exact side a lip tet gets a face point in \
+            its lip face (hanging vertex); as ON, tets straddling the plane below the old \
+            crack get face points (the tables take ON for inside C); a side per tet \
+            disagrees across faces shared with straddling tets. The tables need a state \
+            for 'on the plane, outside C'"]
 fn an_incision_meeting_an_earlier_one() {
     for name in mt_common::MESHES {
         let mut run = Run::new(name);
