@@ -50,13 +50,29 @@ pub struct Cutter {
     bvh: TetBvh,
     scratch: CutScratch,
     state_cache: StateCache,
-    /// Dense index of each snapped vertex during a cut (valid for those only).
+    /// During a pass of the copy planning, the index of each vertex it examines; `NONE`
+    /// for every other vertex (and for all between passes).
     snapped_slot: Vec<u32>,
     options: CutOptions,
     cuts_applied: u32,
     build_time: Duration,
     /// Decide as the MT cut does on its levels (see [`Cutter::for_mt_frontier`]).
     mt_rules: bool,
+}
+
+/// The vertices snapped onto the cut (sorted, distinct).
+fn snapped_vertices(tets: &[Tet], classes: &[TetClass]) -> Vec<VertexId> {
+    let mut snapped: Vec<VertexId> = Vec::new();
+    for (tet, c) in tets.iter().zip(classes) {
+        for (j, &s) in c.states.iter().enumerate() {
+            if s == ON {
+                snapped.push(tet[j]);
+            }
+        }
+    }
+    snapped.sort_unstable();
+    snapped.dedup();
+    snapped
 }
 
 impl Cutter {
@@ -314,22 +330,35 @@ impl Cutter {
         // Vertices whose stars changed since the last pass (None: all).
         let mut redo: Option<Vec<VertexId>> = None;
         let mut copies = Copies::default();
+        // The snapped vertices (sorted); unsnapping only removes some.
+        let mut snapped = snapped_vertices(&tets, &classes);
         let snapped = loop {
             passes += 1;
             let t = Instant::now();
-            let (star, snapped) =
-                Self::star_of_snapped(&self.mesh, polygon, &tets, &classes, &children, &child_of);
             if opts.scheme == Scheme::Lut {
-                if self.snapped_slot.len() < self.mesh.nb_vertices() {
-                    self.snapped_slot.resize(self.mesh.nb_vertices(), 0);
+                // A later pass examines only the vertices whose stars changed.
+                let examine: Vec<VertexId> = match &redo {
+                    None => snapped.clone(),
+                    Some(r) => r
+                        .iter()
+                        .copied()
+                        .filter(|v| snapped.binary_search(v).is_ok())
+                        .collect(),
+                };
+                let slots = &mut self.snapped_slot;
+                if slots.len() < self.mesh.nb_vertices() {
+                    slots.resize(self.mesh.nb_vertices(), NONE);
                 }
-                for (i, v) in snapped.iter().enumerate() {
-                    self.snapped_slot[v.idx()] = i as u32;
+                for (i, v) in examine.iter().enumerate() {
+                    slots[v.idx()] = i as u32;
                 }
-                let slots = &self.snapped_slot;
-                let update = plan_copies(&snapped, &star, redo.as_deref(), |v| {
-                    slots[v.idx()] as usize
-                });
+                let star = Self::star_of(
+                    &self.mesh, polygon, &tets, &classes, &children, &child_of, slots,
+                );
+                let update = plan_copies(&examine, &star, |v| slots[v.idx()] as usize);
+                for v in &examine {
+                    slots[v.idx()] = NONE;
+                }
                 copies = match &redo {
                     None => update,
                     Some(r) => std::mem::take(&mut copies).merge(r, update),
@@ -352,6 +381,7 @@ impl Cutter {
                 &mut states,
             );
             unsnapped.extend_from_slice(&pinched);
+            snapped.retain(|v| pinched.binary_search(v).is_err());
             let sub_tets: Vec<Tet> = affected.iter().map(|&k| tets[k]).collect();
             let sub_states: Vec<[u8; 4]> = affected.iter().map(|&k| states[k]).collect();
             let sub = session.classify(positions, &self.scales, &sub_tets, &sub_states, false);
@@ -524,37 +554,37 @@ impl Cutter {
         })
     }
 
-    /// The tets around the vertices snapped onto the cut, with their planned sides, and
-    /// those vertices (sorted). Tets are named by virtual slots: candidate `k`'s child `c`
-    /// is `32 k + c` (child 0 of a split tet, and an unsplit tet, take the tet's slot).
-    fn star_of_snapped(
+    /// The tets around the snapped vertices to examine (those with a slot in `slots`,
+    /// `NONE` for the others), with their planned sides. Tets are named by virtual slots:
+    /// candidate `k`'s child `c` is `32 k + c` (child 0 of a split tet, and an unsplit tet,
+    /// take the tet's slot).
+    fn star_of(
         mesh: &TetMesh,
         polygon: &CutPolygon,
         tets: &[Tet],
         classes: &[TetClass],
         children: &[Children],
         child_of: &[u32],
-    ) -> (Vec<StarEntry>, Vec<VertexId>) {
-        let mut snapped: Vec<VertexId> = Vec::new();
+        slots: &[u32],
+    ) -> Vec<StarEntry> {
+        let wanted = |v: VertexId| slots.get(v.idx()).is_some_and(|&s| s != NONE);
         let mut star: Vec<StarEntry> = Vec::new();
         for (k, c) in classes.iter().enumerate() {
             if !c.touches_cut() {
                 continue;
             }
-            for (j, &s) in c.states.iter().enumerate() {
-                if s == ON {
-                    snapped.push(tets[k][j]);
-                }
+            let tet = &tets[k];
+            if !(0..4).any(|j| c.states[j] == ON && wanted(tet[j])) {
+                continue;
             }
             match child_of[k] {
                 i if i != NONE => {
                     let ch = &children[i as usize];
                     for i in 0..ch.len {
-                        let on = ch.on_cut[i];
-                        for j in 0..4 {
-                            if on & (1 << j) != 0 {
+                        for (j, &v) in ch.tets[i].iter().enumerate() {
+                            if ch.on_cut[i] & (1 << j) != 0 && wanted(v) {
                                 star.push(StarEntry {
-                                    vertex: ch.tets[i][j],
+                                    vertex: v,
                                     tet: TetId((32 * k + i) as u32),
                                     verts: ch.tets[i],
                                     side: ch.sides[i],
@@ -564,13 +594,13 @@ impl Cutter {
                     }
                 }
                 _ => {
-                    let side = Self::unsplit_side(mesh, polygon, &tets[k], &c.states);
-                    for (j, &s) in c.states.iter().enumerate() {
-                        if s == ON {
+                    let side = Self::unsplit_side(mesh, polygon, tet, &c.states);
+                    for (j, &v) in tet.iter().enumerate() {
+                        if c.states[j] == ON && wanted(v) {
                             star.push(StarEntry {
-                                vertex: tets[k][j],
+                                vertex: v,
                                 tet: TetId((32 * k) as u32),
-                                verts: tets[k],
+                                verts: *tet,
                                 side,
                             });
                         }
@@ -578,9 +608,7 @@ impl Cutter {
                 }
             }
         }
-        snapped.sort_unstable();
-        snapped.dedup();
-        (star, snapped)
+        star
     }
 
     /// The side of a tet the tables leave whole but that touches the cut at a vertex: the

@@ -568,9 +568,7 @@ impl MtCutter {
             }
             on_cut.sort_unstable();
             on_cut.dedup();
-            let plan = plan_copies(&on_cut, &star, None, |v| {
-                on_cut.binary_search(&v).unwrap_or(0)
-            });
+            let plan = plan_copies(&on_cut, &star, |v| on_cut.binary_search(&v).unwrap_or(0));
             let mut bad = plan.pinched;
             for w in plan.groups.windows(2) {
                 if w[0].0 == w[1].0 {

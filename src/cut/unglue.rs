@@ -53,12 +53,10 @@ fn find(parent: &mut [u32], mut i: u32) -> u32 {
 
 /// Groups the tets around each `ON` vertex and decides the copies (see the module docs).
 /// `entries` lists every tet around every vertex of `on_cut` (sorted, distinct), in a
-/// deterministic order; `slot(v)` is the position of `v` in `on_cut`. With `only`
-/// (sorted), only those vertices are examined.
+/// deterministic order; `slot(v)` is the position of `v` in `on_cut`.
 pub fn plan_copies(
     on_cut: &[VertexId],
     entries: &[StarEntry],
-    only: Option<&[VertexId]>,
     slot: impl Fn(VertexId) -> usize,
 ) -> Copies {
     // Bucket the entries by vertex (a counting sort: stable, linear).
@@ -84,9 +82,6 @@ pub fn plan_copies(
     let mut count: Vec<[i64; 3]> = Vec::new();
     let mut others: Vec<[VertexId; 3]> = Vec::new();
     for (w, &v) in start.windows(2).zip(on_cut) {
-        if only.is_some_and(|o| o.binary_search(&v).is_err()) {
-            continue;
-        }
         let run = &sorted[w[0]..w[1]];
         let has_pos = run.iter().any(|e| e.side == Side::Positive);
         let has_neg = run.iter().any(|e| e.side == Side::Negative);
