@@ -829,7 +829,7 @@ pub fn origin_positions(positions: &[DVec3], origins: &[VertexOrigin]) -> Vec<DV
     let bits = |v: VertexId| positions[v.idx()].to_array().map(f64::to_bits);
     // Edges and faces keyed apart: an edge's third corner is a value no finite
     // coordinate has.
-    let mut first: HashMap<[[u64; 3]; 3], DVec3, std::hash::BuildHasherDefault<BitsHasher>> =
+    let mut first: HashMap<[[u64; 3]; 3], DVec3, crate::mesh::fxhash::FxBuild> =
         HashMap::with_capacity_and_hasher(origins.len(), Default::default());
     origins
         .iter()
@@ -851,35 +851,6 @@ pub fn origin_positions(positions: &[DVec3], origins: &[VertexOrigin]) -> Vec<DV
             *first.entry(key).or_insert(p)
         })
         .collect()
-}
-
-/// A hasher for keys made of coordinate bit patterns, built by the library itself (no
-/// attacker chooses them): a multiply-rotate per word, several times cheaper than the
-/// default SipHash on the few hundred keys of a small cut, where hashing was a tenth of
-/// the time.
-#[derive(Default)]
-struct BitsHasher(u64);
-
-impl std::hash::Hasher for BitsHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        for chunk in bytes.chunks(8) {
-            let mut w = [0u8; 8];
-            w[..chunk.len()].copy_from_slice(chunk);
-            self.write_u64(u64::from_le_bytes(w));
-        }
-    }
-
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-
-    fn write_usize(&mut self, x: usize) {
-        self.write_u64(x as u64);
-    }
 }
 
 /// The position of a new vertex from its origin.

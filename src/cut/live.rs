@@ -70,6 +70,7 @@ use super::mt_cut::{MtCutStats, MtCutter};
 use super::options::{CutError, CutOptions};
 use super::report::CutStats;
 use crate::geom::{Aabb, CutPolygon, DVec3, PolygonError};
+use crate::mesh::fxhash::FxBuild;
 use crate::mesh::{Tet, TetMesh, VertexId};
 use crate::mt::{ExtractError, ExtractOptions, Mt};
 use std::collections::{HashMap, VecDeque};
@@ -481,7 +482,7 @@ impl LiveMt {
             k
         };
         let at = e.mesh.positions();
-        let by_key: HashMap<[[u64; 3]; 4], usize> = e
+        let by_key: HashMap<[[u64; 3]; 4], usize, FxBuild> = e
             .mesh
             .tets()
             .iter()
@@ -517,7 +518,7 @@ impl LiveMt {
     /// deformation.
     fn remesh(&mut self) -> Result<(), LiveError> {
         let e = self.cutter.mt().extract(&self.resolution)?;
-        let mut current: HashMap<VertexId, DVec3> = HashMap::new();
+        let mut current: HashMap<VertexId, DVec3, FxBuild> = HashMap::default();
         for (i, &v) in self.mt_vertex.iter().enumerate() {
             if v.is_valid() {
                 current.insert(v, self.current.mesh().position(VertexId::from_usize(i)));

@@ -128,6 +128,7 @@ use super::split::{Children, split_tet};
 use super::tables::{NEG, ON, POS, Side};
 use super::unglue::{StarEntry, plan_copies};
 use crate::geom::{Aabb, CutPolygon, DVec3};
+use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::{TET_EDGES, TET_FACES, flip_face, oriented_face};
 use crate::mesh::{FragmentId, Tet, TetId, VertexId};
 use crate::mt::{FragmentKind, GHOST, Mt, OpenMt};
@@ -613,7 +614,7 @@ impl MtCutter {
             .collect();
         let unsplit_side = |k: usize| unsplit[k];
         // Per snapped vertex: seen positive, negative, straddling.
-        let mut around: HashMap<VertexId, [bool; 3]> = HashMap::new();
+        let mut around: HashMap<VertexId, [bool; 3], FxBuild> = HashMap::default();
         let mut note = |v: VertexId, side: Side| {
             let e = around.entry(v).or_default();
             match side {
@@ -650,7 +651,7 @@ impl MtCutter {
         let mut snapped: Vec<VertexId> = around.keys().copied().collect();
         snapped.sort_unstable();
         stats.vertices_snapped = snapped.len();
-        let mut copy_of: HashMap<VertexId, VertexId> = HashMap::new();
+        let mut copy_of: HashMap<VertexId, VertexId, FxBuild> = HashMap::default();
         let mut copies: Vec<VertexId> = Vec::new();
         for &v in &snapped {
             let [p, n, s] = around[&v];
@@ -695,7 +696,7 @@ impl MtCutter {
                 VertexOrigin::Copy { .. } => false,
             }
         };
-        let mut sub_faces: HashMap<FaceKey, Vec<(Tet, Side)>> = HashMap::new();
+        let mut sub_faces: HashMap<FaceKey, Vec<(Tet, Side)>, FxBuild> = HashMap::default();
         for (k, &i) in child_of.iter().enumerate() {
             if i == NONE {
                 continue;
@@ -724,7 +725,7 @@ impl MtCutter {
         }
         // The side of the tets holding faces with a snapped vertex (for ghosts not
         // subdivided but touching a duplicated vertex).
-        let mut face_side: HashMap<FaceKey, Side> = HashMap::new();
+        let mut face_side: HashMap<FaceKey, Side, FxBuild> = HashMap::default();
         for (k, class) in classes.iter().enumerate() {
             if !class.touches_cut() {
                 continue;
@@ -830,7 +831,7 @@ impl MtCutter {
         // tet or ghost able to coexist with them in a frontier matches. (A tet of another
         // level may hold the opposite face on the other side of the crack: snapping bends
         // the cut surface differently on each level.)
-        let mut present: HashMap<FaceKey, Vec<u32>> = HashMap::new();
+        let mut present: HashMap<FaceKey, Vec<u32>, FxBuild> = HashMap::default();
         let all_cut = |t: &Tet, f: &[usize; 3]| f.iter().all(|&j| is_cut_vertex(t[j]));
         for &t in &touched {
             let tet = open.tets[t as usize];
@@ -911,14 +912,24 @@ impl MtCutter {
         // Floor and ceiling of each involved fragment, in pool order.
         let mut floor: Vec<Vec<u32>> = vec![Vec::new(); order.len()];
         let mut ceiling: Vec<Vec<u32>> = vec![Vec::new(); order.len()];
+        // Each tet in them, with its indices in its creator's ceiling and its destroyer's
+        // floor (`u32::MAX`: that fragment is not involved).
+        let mut links: Vec<[u32; 3]> = Vec::new();
         for t in 0..open.tets.len() {
             let (c, d) = (slot[open.creator[t].idx()], slot[open.destroyer[t].idx()]);
+            if c == u32::MAX && d == u32::MAX {
+                continue;
+            }
+            let mut link = [t as u32, u32::MAX, u32::MAX];
             if c != u32::MAX {
+                link[1] = ceiling[c as usize].len() as u32;
                 ceiling[c as usize].push(t as u32);
             }
             if d != u32::MAX {
+                link[2] = floor[d as usize].len() as u32;
                 floor[d as usize].push(t as u32);
             }
+            links.push(link);
         }
         // The local parts of each involved fragment, each with a provisional id after the
         // fragments': `first_part[i] + p` for part `p` of fragment `order[i]`.
@@ -935,18 +946,25 @@ impl MtCutter {
         // Parts of one fragment that stay in one body are not separated (see the module
         // docs): only parts in different bodies become different fragments.
         body.extend(nf as u32..next);
-        let mut part_of: HashMap<u32, [u32; 2]> = HashMap::new();
-        for i in 0..order.len() {
-            let nfl = floor[i].len();
-            for (j, &t) in floor[i].iter().chain(&ceiling[i]).enumerate() {
-                let e = part_of
-                    .entry(t)
-                    .or_insert([open.creator[t as usize].0, open.destroyer[t as usize].0]);
-                e[(j < nfl) as usize] = first_part[i] + parts[i][j];
-            }
-        }
-        for &[c, d] in part_of.values() {
-            union(&mut body, c, d);
+        // Each tet joins the part above it (in its creator's ceiling) to the part below it
+        // (in its destroyer's floor); a fragment not involved is its own part.
+        for &[t, in_ceiling, in_floor] in &links {
+            let (c, d) = (open.creator[t as usize], open.destroyer[t as usize]);
+            let above = match in_ceiling {
+                u32::MAX => c.0,
+                j => {
+                    let i = slot[c.idx()] as usize;
+                    first_part[i] + parts[i][floor[i].len() + j as usize]
+                }
+            };
+            let below = match in_floor {
+                u32::MAX => d.0,
+                j => {
+                    let i = slot[d.idx()] as usize;
+                    first_part[i] + parts[i][j as usize]
+                }
+            };
+            union(&mut body, above, below);
         }
         self.cracked.resize(nf, false);
         for (i, &f) in order.iter().enumerate() {
@@ -1119,7 +1137,7 @@ impl Reach {
             return true;
         }
         let target = self.level[b.idx()];
-        let mut seen: HashSet<u32> = HashSet::new();
+        let mut seen: HashSet<u32, FxBuild> = HashSet::default();
         let mut stack = vec![a.0];
         while let Some(f) = stack.pop() {
             for &g in &self.succ[f as usize] {
@@ -1283,7 +1301,7 @@ fn side_of_states(tet: &Tet, states: [u8; 4], positions: &[DVec3], polygon: &Cut
 fn split_fragment(tets: &[Tet], positions: &[DVec3], floor: &[u32], ceiling: &[u32]) -> Vec<u32> {
     let n = floor.len() + ceiling.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
-    let mut first: HashMap<VertexId, u32> = HashMap::new();
+    let mut first: HashMap<VertexId, u32, FxBuild> = HashMap::default();
     let all: Vec<u32> = floor.iter().chain(ceiling).copied().collect();
     for (i, &t) in all.iter().enumerate() {
         for &v in tets[t as usize].iter().filter(|v| **v != GHOST) {

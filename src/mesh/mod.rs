@@ -8,6 +8,7 @@
 mod adjacency;
 mod attributes;
 mod boundary;
+pub(crate) mod fxhash;
 mod ids;
 mod quality;
 mod submesh;

@@ -13,44 +13,13 @@
 use super::link::{LinkScratch, link_condition};
 use super::surface::{Surface, VertexClass, edge_key, point_triangle_distance};
 use crate::geom::{DVec3, Sign, orient3d, triangle_normal};
+use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::TET_FACES;
 use crate::mesh::{Tet, VertexId};
 use crate::mt::GHOST;
 use crate::mt::error::{TetError, TetSample, mean_ratio_cubed};
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
-use std::hash::{BuildHasherDefault, Hasher};
-
-/// A small fast hasher for integer keys (the build's edge and face sets); the default
-/// SipHash is built to resist adversarial keys, which vertex ids are not.
-#[derive(Default, Clone, Copy)]
-pub(super) struct FxHasher(u64);
-
-impl Hasher for FxHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.add(b as u64);
-        }
-    }
-    fn write_u32(&mut self, i: u32) {
-        self.add(i as u64);
-    }
-    fn write_u64(&mut self, i: u64) {
-        self.add(i);
-    }
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
-impl FxHasher {
-    #[inline]
-    fn add(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-}
-
-pub(super) type FxBuild = BuildHasherDefault<FxHasher>;
 
 /// A queued collapse of `v` onto `w`, valid while neither vertex's star has changed.
 #[derive(Clone, Copy, Debug)]
