@@ -8,13 +8,16 @@
 //! # The three steps
 //!
 //! 1. **Candidates, over all levels.** Every tet of the pool (not only a frontier) that C
-//!    may cross: fragments are filtered by their boxes against C's box and plane, then the
-//!    tets each fragment creates (every tet has exactly one creator, so each is met once)
-//!    by their box and vertex states, as the plain-mesh engine does ([`super::classify`]).
-//!    Fragment boxes are re-derived by [`OpenMt::close`] after each cut, so the filter
-//!    always sees the tets cuts appended. The fragment filter is a linear pass over the
-//!    fragment boxes, not yet a hierarchy ([`crate::mt::FragmentBvh`] would serve; it is
-//!    a small part of the time measured by `benches/table2.rs`).
+//!    may cross: fragments are found through a hierarchy over their boxes
+//!    ([`crate::mt::FragmentBvh`], built with the cutter) against C's box and plane, then
+//!    the tets each fragment creates (every tet has exactly one creator, so each is met
+//!    once) are tested by their box and vertex states, as the plain-mesh engine does
+//!    ([`super::classify`]). The root, whose box is the whole body, is not searched
+//!    tet by tet: each tet it creates lies in the floor of the fragment destroying it, so
+//!    it is reached through that fragment's box (or, kept to the coarsest mesh, through
+//!    the drain). Fragment boxes are re-derived by [`OpenMt::close`] after each cut, and
+//!    only shrink (children lie inside their parents), so the hierarchy built once stays
+//!    conservative; a fragment a cut splits off is found through its origin's entry.
 //! 2. **Replace, with one classification for the whole pool.** All candidates of all
 //!    levels go to one [`CutSession`]: its records are keyed by global vertex ids, so an
 //!    edge or a face shared by tets of several levels gets one cut point (one per side)
@@ -131,7 +134,7 @@ use crate::geom::{Aabb, CutPolygon, DVec3};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::{TET_EDGES, TET_FACES, flip_face, oriented_face};
 use crate::mesh::{FragmentId, Tet, TetId, VertexId};
-use crate::mt::{FragmentKind, GHOST, Mt, OpenMt};
+use crate::mt::{FragmentBvh, FragmentKind, GHOST, Mt, OpenMt};
 use std::collections::{HashMap, HashSet};
 use std::time::Instant;
 
@@ -242,6 +245,15 @@ pub struct MtCutter {
     /// Where each vertex the last cut appended comes from (see
     /// [`MtCutter::last_origins`]).
     last_origins: Vec<VertexOrigin>,
+    /// The collapse fragments by box, built with the cutter (step 1). Cuts replace tets by
+    /// children inside them, so a fragment's box only shrinks and the hierarchy's boxes,
+    /// grown by `fragment_bvh_slack` (for the quantisation of the boxes and for rounding
+    /// of new points on the body's bounding box), stay conservative.
+    fragment_bvh: FragmentBvh,
+    fragment_bvh_slack: DVec3,
+    /// Per fragment: the next fragment a cut split off the same hierarchy entry (`NONE`:
+    /// the last); each split-off fragment's box lies in its origin's.
+    split_off: Vec<u32>,
 }
 
 /// Largest `snap` an MT cut accepts (see the module docs, "Limits").
@@ -318,6 +330,10 @@ impl MtCutter {
         let max_scale = scales.iter().copied().fold(0.0, f64::max);
         let bounds = Aabb::from_points(mt.positions());
         let cracked = cracked_fragments(&mt);
+        let fragment_bvh = FragmentBvh::new(&mt);
+        // Four steps of the boxes' 16-bit quantisation.
+        let fragment_bvh_slack = (bounds.max - bounds.min) * (4.0 / f64::from(u16::MAX));
+        let split_off = vec![NONE; mt.nb_fragments()];
         Ok(MtCutter {
             mt: Some(mt),
             scales,
@@ -327,6 +343,9 @@ impl MtCutter {
             options,
             cracked,
             last_origins: Vec::new(),
+            fragment_bvh,
+            fragment_bvh_slack,
+            split_off,
         })
     }
 
@@ -438,30 +457,65 @@ impl MtCutter {
             let e = (b.max - b.min) * 0.5;
             (normal.dot(c) - offset).abs() <= normal.abs().dot(e) + margin
         };
-        let mut cand: Vec<TetId> = Vec::new();
-        let mut states: Vec<[u8; 4]> = Vec::new();
-        for f in 0..mt.nb_fragments() {
-            let f = FragmentId::from_usize(f);
-            if mt.fragment_kind(f) == FragmentKind::Drain
-                || (deformed.is_none() && !box_meets(&mt.fragment_bbox(f)))
-            {
-                continue;
+        let mut found: Vec<(TetId, [u8; 4])> = Vec::new();
+        let mut test = |t: TetId| {
+            let tet = mt.tet(t);
+            if tet[3] == GHOST {
+                return;
             }
-            for t in mt.created_tets(f) {
-                let tet = mt.tet(t);
-                if tet[3] == GHOST {
-                    continue;
-                }
-                stats.tets_tested += 1;
-                let s = classifier.tet(positions, &self.scales, &tet);
-                if is_candidate(s)
-                    && box_meets(&Aabb::from_points(&tet.map(|v| positions[v.idx()])))
-                {
-                    cand.push(t);
-                    states.push(s);
+            stats.tets_tested += 1;
+            let s = classifier.tet(positions, &self.scales, &tet);
+            if is_candidate(s) && box_meets(&Aabb::from_points(&tet.map(|v| positions[v.idx()]))) {
+                found.push((t, s));
+            }
+        };
+        if deformed.is_some() {
+            // Boxes hold at rest only: every tet of every fragment.
+            for f in 0..mt.nb_fragments() {
+                let f = FragmentId::from_usize(f);
+                if mt.fragment_kind(f) != FragmentKind::Drain {
+                    mt.created_tets(f).for_each(&mut test);
                 }
             }
+        } else {
+            // Collapse fragments through the hierarchy (its boxes grown to stay
+            // conservative, see `fragment_bvh`), each checked by its current box. A tet
+            // is reached once: through its creator, or, created by a root, through its
+            // destroyer (whose floor holds it) or as one of the root's tets in the
+            // coarsest mesh.
+            let grow = self.fragment_bvh_slack;
+            let mut hits: Vec<FragmentId> = Vec::new();
+            self.fragment_bvh.query(
+                |b| {
+                    box_meets(&Aabb {
+                        min: b.min - grow,
+                        max: b.max + grow,
+                    })
+                },
+                |hit| {
+                    let mut f = hit.fragment.0;
+                    while f != NONE {
+                        if box_meets(&mt.fragment_bbox(FragmentId(f))) {
+                            hits.push(FragmentId(f));
+                        }
+                        f = self.split_off[f as usize];
+                    }
+                },
+            );
+            for &g in &hits {
+                mt.created_tets(g).for_each(&mut test);
+            }
+            for &r in mt.roots() {
+                for &g in hits.iter().chain(mt.drains()) {
+                    if let Some(a) = mt.arc_between(r, g) {
+                        mt.arc_tets(a).map(TetId::from_usize).for_each(&mut test);
+                    }
+                }
+            }
+            // Pool order, as a pass over the fragments in id order finds them.
+            found.sort_unstable_by_key(|&(t, _)| t);
         }
+        let (mut cand, mut states): (Vec<TetId>, Vec<[u8; 4]>) = found.into_iter().unzip();
         settle_plane_vertices(
             polygon,
             opts,
@@ -1001,8 +1055,13 @@ impl MtCutter {
             stats.fragments_split += 1;
             let first_new_fragment = open.kind.len() as u32;
             for _ in 1..n_groups {
+                let n = open.kind.len();
                 open.kind.push(open.kind[f.idx()]);
                 open.error.push(open.error[f.idx()]);
+                // Chained after `f`: found through `f`'s hierarchy entry.
+                debug_assert_eq!(self.split_off.len(), n);
+                self.split_off.push(self.split_off[f.idx()]);
+                self.split_off[f.idx()] = n as u32;
             }
             stats.fragments_added += (n_groups - 1) as usize;
             let id = |p: u32| match group[p as usize] {
