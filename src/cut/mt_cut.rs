@@ -458,9 +458,17 @@ impl MtCutter {
             (normal.dot(c) - offset).abs() <= normal.abs().dot(e) + margin
         };
         let mut found: Vec<(TetId, [u8; 4])> = Vec::new();
+        // Ghosts whose triangle meets C's neighbourhood: the only ones the cut can
+        // subdivide (their face has a cut point) or give copies (a vertex on the cut).
+        let mut ghosts: Vec<u32> = Vec::new();
         let mut test = |t: TetId| {
             let tet = mt.tet(t);
             if tet[3] == GHOST {
+                if box_meets(&Aabb::from_points(
+                    &[0, 1, 2].map(|j| positions[tet[j].idx()]),
+                )) {
+                    ghosts.push(t.0);
+                }
                 return;
             }
             stats.tets_tested += 1;
@@ -512,9 +520,10 @@ impl MtCutter {
                     }
                 }
             }
-            // Pool order, as a pass over the fragments in id order finds them.
-            found.sort_unstable_by_key(|&(t, _)| t);
         }
+        // Pool order, as a pass over the fragments in id order finds them.
+        found.sort_unstable_by_key(|&(t, _)| t);
+        ghosts.sort_unstable();
         let (mut cand, mut states): (Vec<TetId>, Vec<[u8; 4]>) = found.into_iter().unzip();
         settle_plane_vertices(
             polygon,
@@ -856,11 +865,9 @@ impl MtCutter {
         let mut ghost_touched: Vec<u32> = Vec::new();
         let mut appended_parents: Vec<u32> = Vec::new();
         let n_pool = open.tets.len();
-        for g in 0..n_pool {
+        for &g in &ghosts {
+            let g = g as usize;
             let tet = open.tets[g];
-            if tet[3] != GHOST {
-                continue;
-            }
             let key = oriented_face(tet[0].0, tet[1].0, tet[2].0);
             if let Some(subs) = sub_faces.get(&key) {
                 stats.ghosts_split += 1;
