@@ -1077,12 +1077,23 @@ impl MtCutter {
             };
             let nfl = floor[i].len();
             for (j, &t) in floor[i].iter().enumerate() {
-                open.destroyer[t as usize] = id(parts[i][j]);
+                let g = id(parts[i][j]);
+                if g != f {
+                    open.destroyer[t as usize] = g;
+                    open.relabelled.push(t);
+                }
             }
             for (j, &t) in ceiling[i].iter().enumerate() {
-                open.creator[t as usize] = id(parts[i][nfl + j]);
+                let g = id(parts[i][nfl + j]);
+                if g != f {
+                    open.creator[t as usize] = g;
+                    open.relabelled.push(t);
+                }
             }
         }
+        // Every tet the cut changed is in the floor or ceiling of an involved fragment
+        // (or of one added above): the other boxes stay.
+        open.changed_fragments = Some(order.iter().map(|f| f.0).collect());
         let mt = open
             .close()
             .unwrap_or_else(|e| panic!("the MT cut left an inconsistent store: {e}"));

@@ -84,6 +84,11 @@ impl Attributes {
         self.columns.iter().find(|c| c.len() != n)
     }
 
+    /// The columns, to change values in place (their lengths must stay whole elements).
+    pub(crate) fn iter_mut(&mut self) -> std::slice::IterMut<'_, Attribute> {
+        self.columns.iter_mut()
+    }
+
     /// Makes room for `n` more elements in every column.
     pub fn reserve(&mut self, n: usize) {
         for c in &mut self.columns {

@@ -5,14 +5,18 @@
 //! contiguous arcs: tets can then be replaced in place, appended, and relabelled freely
 //! (the paper's expanded arcs, §3). [`OpenMt::close`] sorts the pool back into arcs and
 //! assembles the MT, deriving levels, boxes and arc lists with the same code as a build or
-//! a load, so an edit cannot leave them inconsistent. Appended vertices and tets need
+//! a load, so an edit cannot leave them inconsistent. Two exceptions keep the cost of a
+//! small edit of a large MT near the size of the edit: the sort is a merge in place when
+//! little moved (its result does not depend on the editor's hint), and an editor that
+//! lists the fragments it changed ([`OpenMt::changed_fragments`]) keeps the others' boxes
+//! (the cut does; `Mt::validate` checks every box). Appended vertices and tets need
 //! attribute rows; the editor pushes them (interpolated for vertices, inherited for tets,
 //! zeros for ghosts).
 //!
 //! This module knows nothing of cuts: the cut layer (`crate::cut::mt`) decides what to
 //! change.
 
-use super::{FragmentKind, GHOST, Mt, MtInfo, MtParts};
+use super::{BoxFrame, FragmentKind, GHOST, KnownBoxes, Mt, MtInfo, MtParts, QuantBox};
 use crate::geom::DVec3;
 use crate::mesh::{Attributes, FragmentId, Tet, TetId, VertexId};
 
@@ -30,6 +34,19 @@ pub struct OpenMt {
     pub kind: Vec<FragmentKind>,
     pub error: Vec<f64>,
     pub info: MtInfo,
+    /// How many leading tets were in arc order when the MT was opened (0: unknown).
+    pub opened_sorted: usize,
+    /// Tets below `opened_sorted` whose creator or destroyer an edit changed. A hint for
+    /// [`close`](Self::close) only: the order it produces does not depend on it.
+    pub relabelled: Vec<u32>,
+    /// Fragments whose floor or ceiling an edit changed, when the editor keeps count
+    /// (`None`: unknown, every fragment box is derived again when closing). Fragments
+    /// added, and the fragments of appended tets, count without being listed; any other
+    /// fragment keeps the box it had when opened, so an editor that lists fragments must
+    /// list every one it changed (`Mt::validate` compares every box with its tets).
+    pub changed_fragments: Option<Vec<u32>>,
+    /// The fragment boxes when opened.
+    boxes: Option<(BoxFrame, Vec<QuantBox>)>,
 }
 
 impl Mt {
@@ -53,6 +70,10 @@ impl Mt {
             kind: self.kind,
             error: self.error,
             info: self.info,
+            opened_sorted: nt,
+            relabelled: Vec::new(),
+            changed_fragments: None,
+            boxes: Some((self.frame, self.bbox)),
         }
     }
 
@@ -173,6 +194,10 @@ impl Mt {
             kind: keep_f.iter().map(|&f| self.kind[f]).collect(),
             error: keep_f.iter().map(|&f| self.error[f]).collect(),
             info: self.info.clone(),
+            opened_sorted: 0,
+            relabelled: Vec::new(),
+            changed_fragments: None,
+            boxes: None,
         };
         for &t in keep_t {
             let t = TetId::from_usize(t);
@@ -188,7 +213,9 @@ impl Mt {
 
 impl OpenMt {
     /// Sorts the pool into arcs (by creator, then destroyer, then current position: stable)
-    /// and assembles the MT. Errors say what is inconsistent (an editing bug).
+    /// and assembles the MT. An edit of a small part of an opened MT is reordered in place
+    /// (see `Merge`; `relabelled` makes it apply, and cannot change the result). Errors say
+    /// what is inconsistent (an editing bug).
     pub fn close(self) -> Result<Mt, String> {
         let nt = self.tets.len();
         if self.creator.len() != nt || self.destroyer.len() != nt {
@@ -207,46 +234,278 @@ impl OpenMt {
                 self.creator[t], self.destroyer[t]
             ));
         }
-        let key = |t: usize| (self.creator[t].0 as u64) << 32 | self.destroyer[t].0 as u64;
-        let mut order: Vec<u32> = (0..nt as u32).collect();
-        // Mostly sorted (only edited tets moved): the stable merge sort runs in near-linear
-        // time on such input.
-        order.sort_by_key(|&t| key(t as usize));
+        if let Some(c) = self.cell_data.mismatched(nt) {
+            return Err(format!(
+                "{nt} tets with {} values of cell data {:?} in {} components",
+                c.values.len(),
+                c.name,
+                c.components
+            ));
+        }
+        let mut this = self;
+        let known_boxes = match (this.boxes.take(), this.changed_fragments.take()) {
+            (Some((frame, boxes)), Some(listed)) => {
+                let mut changed = vec![false; boxes.len()];
+                let appended = this.opened_sorted.min(nt)..nt;
+                let of_appended = appended.flat_map(|t| [this.creator[t], this.destroyer[t]]);
+                for f in listed.into_iter().chain(of_appended.map(|f| f.0)) {
+                    if let Some(c) = changed.get_mut(f as usize) {
+                        *c = true;
+                    }
+                }
+                Some(KnownBoxes {
+                    frame,
+                    boxes,
+                    changed,
+                })
+            }
+            _ => None,
+        };
+        let merge = Merge::plan(
+            &this.creator,
+            &this.destroyer,
+            this.opened_sorted,
+            &this.relabelled,
+        );
+        let (tets, cell_data, creator, destroyer) = match merge {
+            Some(m) => {
+                // Most of the pool is in place: reorder in place.
+                m.apply(&mut this.tets, 1);
+                for c in this.cell_data.iter_mut() {
+                    m.apply(&mut c.values, c.components);
+                }
+                m.apply(&mut this.creator, 1);
+                m.apply(&mut this.destroyer, 1);
+                (this.tets, this.cell_data, this.creator, this.destroyer)
+            }
+            None => {
+                let key = |t: usize| arc_key(&this.creator, &this.destroyer, t);
+                let mut order: Vec<u32> = (0..nt as u32).collect();
+                order.sort_by_key(|&t| key(t as usize));
+                let keep: Vec<usize> = order.iter().map(|&t| t as usize).collect();
+                (
+                    keep.iter().map(|&t| this.tets[t]).collect(),
+                    this.cell_data.select(&keep),
+                    keep.iter().map(|&t| this.creator[t]).collect(),
+                    keep.iter().map(|&t| this.destroyer[t]).collect(),
+                )
+            }
+        };
         let mut arc_start = Vec::new();
         let mut arc_creator = Vec::new();
         let mut arc_destroyer = Vec::new();
         let mut prev = u64::MAX;
-        for (i, &t) in order.iter().enumerate() {
-            let k = key(t as usize);
+        for t in 0..nt {
+            let k = arc_key(&creator, &destroyer, t);
             if k != prev {
-                arc_start.push(i as u32);
-                arc_creator.push(self.creator[t as usize]);
-                arc_destroyer.push(self.destroyer[t as usize]);
+                arc_start.push(t as u32);
+                arc_creator.push(creator[t]);
+                arc_destroyer.push(destroyer[t]);
                 prev = k;
             }
         }
         arc_start.push(nt as u32);
-        let sorted = order.windows(2).all(|w| w[0] < w[1]);
-        let (tets, cell_data) = if sorted {
-            (self.tets, self.cell_data)
-        } else {
-            let keep: Vec<usize> = order.iter().map(|&t| t as usize).collect();
-            (
-                keep.iter().map(|&t| self.tets[t]).collect(),
-                self.cell_data.select(&keep),
-            )
-        };
+        let OpenMt {
+            positions,
+            point_data,
+            kind,
+            error,
+            info,
+            ..
+        } = this;
         Mt::assemble(MtParts {
-            positions: self.positions,
-            point_data: self.point_data,
+            positions,
+            point_data,
             tets,
             cell_data,
             arc_start,
             arc_creator,
             arc_destroyer,
-            kind: self.kind,
-            error: self.error,
-            info: self.info,
+            kind,
+            error,
+            info,
+            known_boxes,
         })
+    }
+}
+
+/// A tet's arc, as one sortable number: creator, then destroyer.
+#[inline]
+fn arc_key(creator: &[FragmentId], destroyer: &[FragmentId], t: usize) -> u64 {
+    (creator[t].0 as u64) << 32 | destroyer[t].0 as u64
+}
+
+/// The reordering [`OpenMt::close`] makes when most of the pool is still in arc order
+/// (an edit changes a small part of it): the tets an edit may have moved (relabelled, or
+/// appended) are sorted alone, and the others, checked to be still in order, are merged
+/// with them in place. The result is the stable sort of the whole pool by arc, whatever
+/// the hint said; each element moves at most twice, and only the moved ones are copied
+/// aside (a fresh copy of a pool of millions of tets is mostly page faults).
+struct Merge {
+    /// The moved tets by index, ascending.
+    by_index: Vec<u32>,
+    /// The moved tets in their final order (by arc, then index).
+    sorted: Vec<u32>,
+    /// The final position of each of `sorted` (ascending).
+    pos: Vec<u32>,
+}
+
+impl Merge {
+    /// `None` when most of the pool moved, or the tets not said to move are out of order.
+    fn plan(
+        creator: &[FragmentId],
+        destroyer: &[FragmentId],
+        opened_sorted: usize,
+        relabelled: &[u32],
+    ) -> Option<Merge> {
+        let nt = creator.len();
+        let sorted_end = opened_sorted.min(nt);
+        let mut by_index: Vec<u32> = relabelled
+            .iter()
+            .copied()
+            .filter(|&t| (t as usize) < sorted_end)
+            .collect();
+        by_index.sort_unstable();
+        by_index.dedup();
+        by_index.extend(sorted_end as u32..nt as u32);
+        if by_index.len() > nt / 4 {
+            return None;
+        }
+        let key = |t: u32| arc_key(creator, destroyer, t as usize);
+        let mut sorted = by_index.clone();
+        sorted.sort_by_key(|&t| (key(t), t));
+        // Merge the others (the runs between moved tets) with `sorted`, checking they are
+        // in order.
+        let mut pos: Vec<u32> = Vec::with_capacity(sorted.len());
+        let (mut j, mut out, mut prev) = (0usize, 0u32, 0u64);
+        let mut start = 0u32;
+        for end in by_index.iter().copied().chain(std::iter::once(nt as u32)) {
+            for t in start..end {
+                let k = key(t);
+                if k < prev {
+                    return None;
+                }
+                prev = k;
+                while j < sorted.len() && (key(sorted[j]), sorted[j]) < (k, t) {
+                    pos.push(out);
+                    out += 1;
+                    j += 1;
+                }
+                out += 1;
+            }
+            start = end + 1;
+        }
+        while j < sorted.len() {
+            pos.push(out);
+            out += 1;
+            j += 1;
+        }
+        Some(Merge {
+            by_index,
+            sorted,
+            pos,
+        })
+    }
+
+    /// Reorders `v`, `width` values per tet.
+    fn apply<T: Copy>(&self, v: &mut [T], width: usize) {
+        let n = v.len() / width;
+        let aside: Vec<T> = self
+            .sorted
+            .iter()
+            .flat_map(|&t| {
+                v[t as usize * width..(t as usize + 1) * width]
+                    .iter()
+                    .copied()
+            })
+            .collect();
+        // Close up the others, run by run (each moves left or stays).
+        let mut kept = 0usize;
+        let mut start = 0usize;
+        for end in self
+            .by_index
+            .iter()
+            .map(|&t| t as usize)
+            .chain(std::iter::once(n))
+        {
+            let len = end - start;
+            v.copy_within(start * width..end * width, kept * width);
+            kept += len;
+            start = end + 1;
+        }
+        // Put the moved ones back from the end, shifting the others right past them.
+        let mut out = n;
+        for (j, &p) in self.pos.iter().enumerate().rev() {
+            let p = p as usize;
+            let shift = out - p - 1;
+            v.copy_within((kept - shift) * width..kept * width, (p + 1) * width);
+            kept -= shift;
+            v[p * width..(p + 1) * width].copy_from_slice(&aside[j * width..(j + 1) * width]);
+            out = p;
+        }
+        debug_assert_eq!(kept, out);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The in-place reordering is the stable sort by arc, whatever the hint says.
+    #[test]
+    fn merge_is_the_stable_sort_whatever_the_hint() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rand = |n: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % n
+        };
+        let mut merged = 0;
+        for round in 0..300 {
+            let n = 1 + rand(400) as usize;
+            // A pool in arc order (few distinct arcs, so ties are common).
+            let mut keys: Vec<(u32, u32)> =
+                (0..n).map(|_| (rand(6) as u32, rand(4) as u32)).collect();
+            keys.sort();
+            // Edits: some relabelled (said or not), some appended.
+            let mut said: Vec<u32> = Vec::new();
+            for _ in 0..rand(1 + n as u64 / 8) {
+                let t = rand(n as u64) as usize;
+                keys[t] = (rand(8) as u32, rand(8) as u32);
+                if round % 5 != 0 {
+                    said.push(t as u32);
+                }
+            }
+            for _ in 0..rand(1 + n as u64 / 10) {
+                keys.push((rand(8) as u32, rand(8) as u32));
+            }
+            if round % 7 == 0 && !keys.is_empty() {
+                // A lie: a tet said moved that did not.
+                said.push(rand(n as u64) as u32);
+            }
+            let creator: Vec<FragmentId> = keys.iter().map(|k| FragmentId(k.0)).collect();
+            let destroyer: Vec<FragmentId> = keys.iter().map(|k| FragmentId(k.1)).collect();
+            let mut expected: Vec<usize> = (0..keys.len()).collect();
+            expected.sort_by_key(|&t| keys[t]);
+            let Some(m) = Merge::plan(&creator, &destroyer, n, &said) else {
+                continue;
+            };
+            merged += 1;
+            let mut ids: Vec<u32> = (0..keys.len() as u32).collect();
+            m.apply(&mut ids, 1);
+            assert_eq!(ids, expected.iter().map(|&t| t as u32).collect::<Vec<_>>());
+            // Several values per tet move together.
+            let mut wide: Vec<f64> = (0..keys.len())
+                .flat_map(|t| [t as f64, -(t as f64)])
+                .collect();
+            m.apply(&mut wide, 2);
+            let want: Vec<f64> = expected
+                .iter()
+                .flat_map(|&t| [t as f64, -(t as f64)])
+                .collect();
+            assert_eq!(wide, want);
+        }
+        assert!(merged > 100, "only {merged} rounds took the in-place path");
     }
 }

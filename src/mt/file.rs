@@ -402,5 +402,6 @@ fn parse(payload: &[u8]) -> Result<Mt, String> {
         kind,
         error,
         info,
+        known_boxes: None,
     })
 }

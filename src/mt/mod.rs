@@ -152,6 +152,19 @@ pub(crate) struct MtParts {
     pub kind: Vec<FragmentKind>,
     pub error: Vec<f64>,
     pub info: MtInfo,
+    /// Boxes still known from before an edit (see [`KnownBoxes`]); `None`: derive all.
+    pub known_boxes: Option<KnownBoxes>,
+}
+
+/// Fragment boxes an edited MT keeps: those of the fragments the edit did not touch, in
+/// the frame they were quantised in. Used only while the new frame is the same.
+#[derive(Clone, Debug)]
+pub(crate) struct KnownBoxes {
+    pub frame: BoxFrame,
+    pub boxes: Vec<QuantBox>,
+    /// Per fragment (of `boxes`): whether its floor or ceiling changed (box re-derived).
+    /// Fragments past the end are new, so derived too.
+    pub changed: Vec<bool>,
 }
 
 /// A Multi-Tessellation: every level of detail of a tet mesh and the DAG that says how they
@@ -319,9 +332,18 @@ impl Mt {
             b
         };
         let frame = BoxFrame::of(&p.positions);
+        // Kept boxes hold in the same frame only (new vertices lie inside the body, but
+        // a rounding may move its bounding box).
+        let known = p.known_boxes.take().filter(|k| k.frame == frame);
         let bbox: Vec<QuantBox> = (0..nf)
             .into_par_iter()
             .map(|f| {
+                if let Some(k) = &known
+                    && f < k.boxes.len()
+                    && !k.changed[f]
+                {
+                    return k.boxes[f];
+                }
                 let f32 = f as u32;
                 let ins = preds
                     .row(f)

@@ -993,6 +993,7 @@ fn freeze<E: TetError + ?Sized>(
         kind,
         error,
         info,
+        known_boxes: None,
     })
     .map_err(BuildError::Internal)
 }
