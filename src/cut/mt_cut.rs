@@ -1378,17 +1378,36 @@ fn side_of_states(tet: &Tet, states: [u8; 4], positions: &[DVec3], polygon: &Cut
 fn split_fragment(tets: &[Tet], positions: &[DVec3], floor: &[u32], ceiling: &[u32]) -> Vec<u32> {
     let n = floor.len() + ceiling.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
-    let mut first: HashMap<VertexId, u32, FxBuild> = HashMap::default();
     let all: Vec<u32> = floor.iter().chain(ceiling).copied().collect();
-    for (i, &t) in all.iter().enumerate() {
-        for &v in tets[t as usize].iter().filter(|v| **v != GHOST) {
-            match first.get(&v) {
-                Some(&o) => union(&mut parent, i as u32, o),
-                None => {
-                    first.insert(v, i as u32);
+    // The first tet met at each vertex: a table over the pool's vertices for a large
+    // fragment (the root holds the whole finest mesh), a map for the others.
+    let mut join = |first_at: &mut dyn FnMut(VertexId, u32) -> Option<u32>| {
+        for (i, &t) in all.iter().enumerate() {
+            for &v in tets[t as usize].iter().filter(|v| **v != GHOST) {
+                if let Some(o) = first_at(v, i as u32) {
+                    union(&mut parent, i as u32, o);
                 }
             }
         }
+    };
+    if n >= positions.len() / 16 {
+        let mut first = vec![u32::MAX; positions.len()];
+        join(&mut |v, i| match first[v.idx()] {
+            u32::MAX => {
+                first[v.idx()] = i;
+                None
+            }
+            o => Some(o),
+        });
+    } else {
+        let mut first: HashMap<VertexId, u32, FxBuild> = HashMap::default();
+        join(&mut |v, i| match first.get(&v) {
+            Some(&o) => Some(o),
+            None => {
+                first.insert(v, i);
+                None
+            }
+        });
     }
     // Parts present on one level only.
     let nfl = floor.len() as u32;
