@@ -90,3 +90,35 @@ fn readme_time_critical_example_runs() -> Result<(), Box<dyn std::error::Error>>
     assert_eq!(Components::of(live.mesh()).count, 2);
     Ok(())
 }
+
+/// The README's plain-mesh scalpel example, run as written.
+#[test]
+fn readme_plain_scalpel_example_runs() -> Result<(), Box<dyn std::error::Error>> {
+    use mtcut::cut::Cutter;
+    use mtcut::geom::{Tolerance, scalpel_sweep};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/liver.node");
+    let (mesh, _) = mtcut::io::read_mesh(&path)?;
+    let b = mesh.bbox();
+    let (c, d) = (b.center(), b.max - b.min);
+    // A vertical blade crossing the liver in x, in 40 time steps.
+    let blade_positions: Vec<[DVec3; 2]> = (0..=40)
+        .map(|k| {
+            let x = b.min.x - 0.01 * d.x + 1.02 * d.x * f64::from(k) / 40.0;
+            [
+                DVec3::new(x, c.y, b.min.z - 0.1 * d.z),
+                DVec3::new(x, c.y + 0.02 * d.y, b.max.z + 0.1 * d.z),
+            ]
+        })
+        .collect();
+    // --- README scalpel begins
+    let mut scalpel = Cutter::new(mesh.clone(), CutOptions::SCALPEL)?;
+    for w in blade_positions.windows(2) {
+        for polygon in scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 })? {
+            scalpel.cut(&polygon)?;
+        }
+    }
+    // --- README scalpel ends
+    assert!(scalpel.mesh().validate().is_valid());
+    assert_eq!(Components::of(scalpel.mesh()).count, 2);
+    Ok(())
+}

@@ -7,7 +7,7 @@
 //! in the same leaf (`next`). Each node also keeps the largest vertex scale below it, so a
 //! query knows how far from the plane a vertex may be and still be snapped onto the cut.
 
-use super::classify::{StateCache, StateClassifier, is_candidate};
+use super::classify::{CrackTips, StateCache, StateClassifier, is_candidate};
 use crate::geom::{Aabb, CutPolygon, DVec3, Tolerance};
 use crate::mesh::{Tet, TetId};
 
@@ -41,6 +41,8 @@ pub struct QueryOptions<'c> {
     pub cache: &'c mut StateCache,
     /// The classifier's contour band ([`StateClassifier::with_contour_band`]; 0: none).
     pub contour_band: f64,
+    /// Crack tips and their reach ([`StateClassifier::with_crack_tips`]; none: `None`).
+    pub tips: Option<(&'c CrackTips, f64)>,
 }
 
 /// What a query found: candidate tets with their vertex states, and how many tets it
@@ -62,8 +64,9 @@ struct Query<'a> {
     normal: DVec3,
     abs_normal: DVec3,
     offset: f64,
-    /// The snapping tolerance: a snapped vertex is within `snap × scale` of the plane,
-    /// and (its projection being within that distance of C) within twice that of C's box.
+    /// The snapping tolerance (or the crack tips' reach, when larger): a vertex on the cut
+    /// is within `reach × scale` of the plane, and (its projection being within that
+    /// distance of C) within twice that of C's box.
     reach: f64,
     /// The contour band: vertices on the plane that far (relative to their scale) outside
     /// C are on the cut too.
@@ -201,6 +204,7 @@ impl TetBvh {
             parallel,
             cache,
             contour_band,
+            tips,
         } = options;
         let mut out = Candidates::default();
         if self.nodes.is_empty() {
@@ -208,17 +212,23 @@ impl TetBvh {
         }
         let root = &self.nodes[0];
         let coord = root.bbox.min.abs().max(root.bbox.max.abs()).max_element();
+        let mut states = StateClassifier::new(polygon, snap, &root.bbox, root.max_scale)
+            .with_contour_band(contour_band);
+        let mut reach = snap.relative;
+        if let Some((tips, tip_reach)) = tips {
+            states = states.with_crack_tips(tips, tip_reach);
+            reach = reach.max(tip_reach);
+        }
         let q = Query {
             positions,
             scales,
             tets,
-            states: StateClassifier::new(polygon, snap, &root.bbox, root.max_scale)
-                .with_contour_band(contour_band),
+            states,
             cbox: polygon.bbox(),
             normal: polygon.normal(),
             abs_normal: polygon.normal().abs(),
             offset: polygon.plane().offset,
-            reach: snap.relative,
+            reach,
             band: contour_band,
             slack: 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element()),
         };
@@ -264,7 +274,7 @@ impl TetBvh {
             while t.is_valid() {
                 let tet = &q.tets[t.idx()];
                 let near = |v: crate::mesh::VertexId| {
-                    q.states.vertex(q.positions[v.idx()], q.scales[v.idx()])
+                    q.states.vertex(v, q.positions[v.idx()], q.scales[v.idx()])
                 };
                 let states = match cache {
                     Some(c) => q

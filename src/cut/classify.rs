@@ -120,6 +120,49 @@ impl StateCache {
     }
 }
 
+/// The vertices that are crack tips: face points made by earlier cuts (paper Fig. 4c–e),
+/// where a partial cut ends. A cut that continues the crack (a scalpel's next step, whose
+/// polygon begins where the last one ended) takes the tips within reach of its polygon as
+/// on the cut, so the two cracks join there (see [`StateClassifier::with_crack_tips`]).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct CrackTips {
+    bits: Vec<u64>,
+}
+
+impl CrackTips {
+    /// Marks `v` as a crack tip.
+    pub fn insert(&mut self, v: VertexId) {
+        let (w, b) = (v.idx() / 64, v.idx() % 64);
+        if self.bits.len() <= w {
+            self.bits.resize(w + 1, 0);
+        }
+        self.bits[w] |= 1 << b;
+    }
+
+    /// Whether `v` is a crack tip.
+    #[inline]
+    pub fn contains(&self, v: VertexId) -> bool {
+        self.bits
+            .get(v.idx() / 64)
+            .is_some_and(|w| w & (1 << (v.idx() % 64)) != 0)
+    }
+
+    /// Marks the face points among the vertices a cut added (`origins[k]` is vertex
+    /// `first + k`).
+    pub fn insert_face_points(&mut self, first: VertexId, origins: &[VertexOrigin]) {
+        for (k, o) in origins.iter().enumerate() {
+            if matches!(o, VertexOrigin::Face { .. }) {
+                self.insert(VertexId::from_usize(first.idx() + k));
+            }
+        }
+    }
+
+    /// Whether no vertex is a crack tip.
+    pub fn is_empty(&self) -> bool {
+        self.bits.iter().all(|&w| w == 0)
+    }
+}
+
 /// Per-vertex arrays reused by every cut (epoch-stamped: never cleared). Owned by the mesh
 /// or MT that is cut, grown as vertices are added.
 #[derive(Clone, Debug, Default)]
@@ -229,6 +272,11 @@ pub struct StateClassifier<'a> {
     /// Relative width of the band outside C's contour where a vertex on the plane still
     /// counts as on the cut (0 unless [`with_contour_band`](Self::with_contour_band)).
     band: f64,
+    /// Crack tips of earlier cuts, and how far from C (relative to their scale) they are
+    /// taken as on the cut ([`with_crack_tips`](Self::with_crack_tips)).
+    tips: Option<&'a CrackTips>,
+    tip_reach: f64,
+    max_scale: f64,
 }
 
 impl<'a> StateClassifier<'a> {
@@ -249,6 +297,9 @@ impl<'a> StateClassifier<'a> {
             filter,
             far: snap.distance(max_scale).max(filter),
             band: 0.0,
+            tips: None,
+            tip_reach: 0.0,
+            max_scale,
         }
     }
 
@@ -262,16 +313,41 @@ impl<'a> StateClassifier<'a> {
         self
     }
 
+    /// Crack tips of earlier cuts within `reach` × their scale of C (in space: off the
+    /// plane and outside C's contour alike) count as on the cut. A scalpel's step begins
+    /// on the edge where the last step's polygon ended, and that step's crack tips lie up
+    /// to the face-point margin from it, in the last step's plane; when the blade turns or
+    /// tilts they are off the new plane, so neither snapping (almost none on an MT) nor the
+    /// contour band reaches them, and the two cracks would not join: a bridge of material
+    /// would be left at every step. Only tips are taken so: other vertices near C keep the
+    /// usual rules. The plain-mesh engine takes them ([`super::CutOptions::continue_cracks`]);
+    /// the MT cut does not (see [`super::mt_cut`]'s limits).
+    pub fn with_crack_tips(mut self, tips: &'a CrackTips, reach: f64) -> Self {
+        if !tips.is_empty() && reach > 0.0 {
+            self.tips = Some(tips);
+            self.tip_reach = reach;
+            self.far = self.far.max(reach * self.max_scale);
+        }
+        self
+    }
+
+    /// Whether `v` is a crack tip within the tip reach of the plane (`d` its distance).
+    #[inline]
+    fn tip_near(&self, v: VertexId, d: f64, scale: f64) -> bool {
+        self.tips
+            .is_some_and(|t| d.abs() <= self.tip_reach * scale && t.contains(v))
+    }
+
     #[inline(always)]
-    pub fn vertex(&self, p: DVec3, scale: f64) -> u8 {
+    pub fn vertex(&self, v: VertexId, p: DVec3, scale: f64) -> u8 {
         let d = self.normal.dot(p) - self.offset;
         let fast = self.snap.distance(scale).max(self.filter);
-        if d > fast {
+        if d.abs() <= fast || self.tip_near(v, d, scale) {
+            self.near(v, p, scale)
+        } else if d > 0.0 {
             POS
-        } else if d < -fast {
-            NEG
         } else {
-            self.near(p, scale)
+            NEG
         }
     }
 
@@ -296,14 +372,21 @@ impl<'a> StateClassifier<'a> {
         } else if d < -self.far {
             NEG
         } else {
-            self.vertex(p, scales[v.idx()])
+            self.vertex(v, p, scales[v.idx()])
         }
     }
 
     #[cold]
     #[inline(never)]
-    fn near(&self, p: DVec3, scale: f64) -> u8 {
-        vertex_state_in_band(self.polygon, self.snap, self.band, p, scale)
+    fn near(&self, v: VertexId, p: DVec3, scale: f64) -> u8 {
+        let state = vertex_state_in_band(self.polygon, self.snap, self.band, p, scale);
+        if state != ON && self.tip_near(v, self.polygon.signed_distance(p), scale) {
+            let reach = self.tip_reach * scale;
+            if self.polygon.projection_distance(p) <= reach {
+                return ON;
+            }
+        }
+        state
     }
 
     /// The states of a tet's vertices. Branch-free unless a vertex is near the plane (a
@@ -312,7 +395,7 @@ impl<'a> StateClassifier<'a> {
     #[inline]
     pub fn tet(&self, positions: &[DVec3], scales: &[f64], tet: &Tet) -> [u8; 4] {
         self.tet_with(positions, tet, |v| {
-            self.vertex(positions[v.idx()], scales[v.idx()])
+            self.vertex(v, positions[v.idx()], scales[v.idx()])
         })
     }
 

@@ -4,7 +4,7 @@
 use super::bielser::Bielser17Nodes;
 use super::bvh::{QueryOptions, TetBvh};
 use super::classify::{
-    CutScratch, CutSession, NONE, StateCache, TetClass, VertexOrigin, origin_positions,
+    CrackTips, CutScratch, CutSession, NONE, StateCache, TetClass, VertexOrigin, origin_positions,
 };
 use super::options::{CutError, CutOptions, Scheme};
 use super::report::{CutResult, CutStats, CutTimes, SplitRecord};
@@ -56,8 +56,10 @@ pub struct Cutter {
     options: CutOptions,
     cuts_applied: u32,
     build_time: Duration,
-    /// Decide as the MT cut does on its levels (see [`Cutter::for_mt_frontier`]).
-    mt_rules: bool,
+    /// The face points this cutter's cuts made, kept when cracks are continued
+    /// ([`CutOptions::continue_cracks`]); `None` for an MT frontier, which decides as the
+    /// MT cut does, and that does not take crack tips (see [`super::mt_cut`]'s limits).
+    tips: Option<CrackTips>,
 }
 
 /// The vertices snapped onto the cut (sorted, distinct).
@@ -86,9 +88,10 @@ impl Cutter {
     /// A cutter for a mesh extracted from an MT (a frontier), deciding as
     /// [`MtCutter`](super::MtCutter) decides on the same tets: with the MT's vertex `scales`
     /// (one per vertex, [`MtCutter::vertex_scales`](super::MtCutter::vertex_scales) of
-    /// each vertex's MT vertex: they place face points) and the MT cut's rules for vertices
-    /// on the plane (the contour band and settled plane vertices, [`super::mt_cut`]), so a
-    /// blade swept in steps continues its crack. Options as the MT cut takes them.
+    /// each vertex's MT vertex: they place face points) and the MT cut's rules for
+    /// continuing cracks ([`CutOptions::continue_cracks`], set whatever `options` say, but
+    /// without taking crack tips, as the MT cut), so a blade swept in steps continues its
+    /// crack. Options as the MT cut takes them.
     pub fn for_mt_frontier(
         mesh: TetMesh,
         scales: Vec<f64>,
@@ -109,8 +112,8 @@ impl Cutter {
                 expected: "finite and non-negative",
             });
         }
-        let mut cutter = Cutter::prepare_with(mesh, scales, options);
-        cutter.mt_rules = true;
+        let mut cutter = Cutter::prepare_with(mesh, scales, options.with_continue_cracks(true));
+        cutter.tips = None;
         Ok(cutter)
     }
 
@@ -148,7 +151,7 @@ impl Cutter {
             options,
             cuts_applied,
             build_time,
-            mt_rules: false,
+            tips: Some(CrackTips::default()),
         }
     }
 
@@ -244,16 +247,21 @@ impl Cutter {
             QueryOptions {
                 parallel: n_tets / 32 >= opts.parallel_threshold,
                 cache: &mut self.state_cache,
-                contour_band: if self.mt_rules {
+                contour_band: if opts.continue_cracks {
                     super::mt_cut::contour_band(&opts)
                 } else {
                     0.0
                 },
+                tips: self
+                    .tips
+                    .as_ref()
+                    .filter(|_| opts.continue_cracks)
+                    .map(|t| (t, super::mt_cut::tip_reach(&opts))),
             },
         );
         let mut cand = found.tets;
         let mut states = found.states;
-        if self.mt_rules {
+        if opts.continue_cracks {
             let mesh = &self.mesh;
             super::mt_cut::settle_plane_vertices(
                 polygon,
@@ -453,6 +461,9 @@ impl Cutter {
 
         let t = Instant::now();
         add_vertices(&mut self.mesh, &mut self.scales, &origins);
+        if let Some(tips) = self.tips.as_mut().filter(|_| opts.continue_cracks) {
+            tips.insert_face_points(first, &origins);
+        }
         self.cuts_applied += 1;
         let mark = self.cuts_applied as f64;
         let mut by_case = [0usize; 10];

@@ -96,7 +96,7 @@ pub mod table_gen;
 pub mod tables;
 pub mod unglue;
 
-pub use classify::{CutScratch, CutSession, TetClass, VertexOrigin};
+pub use classify::{CrackTips, CutScratch, CutSession, TetClass, VertexOrigin};
 pub use components::Components;
 pub use cutter::{CUT_COLUMN, Cutter, cut_mesh, vertex_scales};
 pub use live::{LiveCut, LiveError, LiveMt, PendingBudget, PendingReport};

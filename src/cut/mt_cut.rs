@@ -122,6 +122,12 @@
 //!   on C's plane just outside it (also on a fresh mesh cut through its vertices).
 //! * A crack follows C up to a tet's size near C's contour (the tips, as on a plain
 //!   mesh): a later cut can cross an earlier polygon in that band.
+//! * **Crack tips off the plane are not taken** as the plain engine takes them when it
+//!   continues cracks ([`StateClassifier::with_crack_tips`]): tried, tips snapped onto a
+//!   cut up to 1.5 × the contour band off its plane broke the floor/ceiling conformity of
+//!   fragments in random cut sequences (tests/cli_mt_cut.rs, tests/mt_live.rs). So a
+//!   scalpel that turns or tilts meets the last step's tips off its plane and the levels
+//!   disagree there (tests/mt_scalpel.rs holds these cases, ignored).
 
 use super::classify::{CutScratch, CutSession, NONE, StateClassifier, TetClass, is_candidate};
 use super::classify::{VertexOrigin, origin_positions};
@@ -284,9 +290,12 @@ fn union(parent: &mut [u32], a: u32, b: u32) {
 
 impl MtCutter {
     /// The options of an MT cut: the engine's defaults with `snap` 1e-6 (vertices are on
-    /// the cut only when on its plane up to rounding, inside C).
+    /// the cut only when on its plane up to rounding, inside C) and cracks continued (an MT
+    /// cut always continues the cracks of earlier cuts, whatever
+    /// [`CutOptions::continue_cracks`] says).
     pub const DEFAULT_OPTIONS: CutOptions = CutOptions {
         snap: crate::geom::Tolerance { relative: 1e-6 },
+        continue_cracks: true,
         ..CutOptions::DEFAULT
     };
 
@@ -429,7 +438,9 @@ impl MtCutter {
             .expect("MtCutter holds its MT between cuts");
         let nv = mt.nb_vertices();
         // Where the cut's decisions are made: rest positions, or the deformed ones (whose
-        // bounds are not the fragments' boxes: those are not used then).
+        // bounds are not the fragments' boxes: those are not used then). Deformed positions
+        // equal to the rest ones (a body at rest) are the cut at rest, boxes included.
+        let deformed = deformed.filter(|p| *p != mt.positions());
         let positions = deformed.unwrap_or(mt.positions());
         let bounds = match deformed {
             Some(p) => Aabb::from_points(p),
@@ -1234,6 +1245,15 @@ impl Reach {
 /// margin, at most 5% of a vertex's scale.
 pub(crate) fn contour_band(opts: &CutOptions) -> f64 {
     opts.face_point_margin.min(0.05)
+}
+
+/// How far from C (relative to their scale) the crack tips of earlier cuts count as on the
+/// cut ([`StateClassifier::with_crack_tips`]). A tip lies on its face at most the face-point
+/// margin (times the section segment, no longer than the tip's scale) from the contour
+/// where its cut ended, so a cut beginning on that contour, in whatever plane, passes
+/// within the margin of it; the band above, half as much again for rounding.
+pub(crate) fn tip_reach(opts: &CutOptions) -> f64 {
+    1.5 * contour_band(opts)
 }
 
 /// Vertices within snapping distance of C's plane but outside C (and its contour band:

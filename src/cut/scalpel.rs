@@ -68,7 +68,8 @@ const SWEEP_PLANARITY: Tolerance = Tolerance { relative: 1e-9 };
 
 impl Scalpel {
     /// The MT cut options of a scalpel: [`MtCutter::DEFAULT_OPTIONS`] with the smallest
-    /// face-point margin (see the module docs).
+    /// face-point margin (see the module docs); the same as [`CutOptions::SCALPEL`] for a
+    /// plain mesh.
     pub const OPTIONS: CutOptions = CutOptions {
         face_point_margin: MIN_FACE_POINT_MARGIN,
         ..MtCutter::DEFAULT_OPTIONS

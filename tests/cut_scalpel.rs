@@ -1,0 +1,240 @@
+//! A scalpel moved in steps through a plain mesh (issue 4's sequences of cuts crossing
+//! earlier cuts; issue 7's progressive scalpel on the simulation's mesh): each step cuts
+//! the area the blade swept since the last, with [`CutOptions::SCALPEL`], and must continue
+//! the crack the earlier steps made. After every step the mesh is valid and keeps its
+//! volume; a blade that crosses the body leaves exactly two parts (no bridge of material
+//! left at a step boundary, no chip cut loose between two steps); one that stops inside
+//! leaves one. Straight, turning and tilting blades, steps of every length (7 to 100 steps
+//! across the body: from many tets per step to less than one), an incision stopped inside
+//! and extended, and incisions meeting (T) or crossing (X) an earlier one, on the three
+//! shared meshes.
+
+mod cut_common;
+
+use cut_common::{MESHES, mesh};
+use mtcut::cut::{Components, CutOptions, Cutter};
+use mtcut::geom::{Aabb, DVec3, Tolerance, scalpel_sweep};
+
+/// A blade position: the segment between two points.
+type Blade = [DVec3; 2];
+
+struct Run {
+    name: &'static str,
+    cutter: Cutter,
+    volume: f64,
+    steps: usize,
+}
+
+impl Run {
+    fn new(name: &'static str, options: CutOptions) -> Run {
+        let input = mesh(name);
+        Run {
+            name,
+            cutter: Cutter::new(input.clone(), options.with_count_components(false))
+                .expect("options"),
+            volume: input.volume(),
+            steps: 0,
+        }
+    }
+
+    fn bounds(&self) -> Aabb {
+        self.cutter.mesh().bbox()
+    }
+
+    /// Moves the blade through `path`, one sweep per consecutive pair, checking the mesh
+    /// after each.
+    fn sweep(&mut self, what: &str, path: &[Blade]) {
+        for w in path.windows(2) {
+            let sweep = scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 })
+                .unwrap_or_else(|e| panic!("{} {what}: sweep: {e}", self.name));
+            for polygon in &sweep {
+                self.cutter
+                    .cut(polygon)
+                    .unwrap_or_else(|e| panic!("{} {what}: cut refused: {e}", self.name));
+            }
+            self.steps += 1;
+            let report = self.cutter.mesh().validate();
+            assert!(
+                report.is_valid(),
+                "{} {what}, step {}: {report}",
+                self.name,
+                self.steps
+            );
+            let v = self.cutter.mesh().volume();
+            assert!(
+                (v - self.volume).abs() <= 1e-12 * self.volume,
+                "{} {what}, step {}: volume {v}, was {}",
+                self.name,
+                self.steps,
+                self.volume
+            );
+        }
+    }
+
+    fn parts(&self) -> usize {
+        Components::of(self.cutter.mesh()).count
+    }
+}
+
+/// A blade spanning the body in z (with margin) at (x, y).
+fn vertical(b: &Aabb, x: f64, y: f64) -> Blade {
+    let d = b.max - b.min;
+    [
+        DVec3::new(x, y, b.min.z - 0.1 * d.z),
+        DVec3::new(x, y, b.max.z + 0.1 * d.z),
+    ]
+}
+
+/// A slightly tilted blade (its plane leans in y) crossing the body in x in `steps` steps.
+fn straight_path(b: &Aabb, steps: usize) -> Vec<Blade> {
+    let (c, d) = (b.center(), b.max - b.min);
+    (0..=steps)
+        .map(|k| {
+            let x = b.min.x - 0.01 * d.x + 1.02 * d.x * k as f64 / steps as f64;
+            [
+                DVec3::new(x, c.y + 0.013 * d.y, b.min.z - 0.1 * d.z),
+                DVec3::new(x, c.y - 0.011 * d.y, b.max.z + 0.1 * d.z),
+            ]
+        })
+        .collect()
+}
+
+#[test]
+fn a_straight_blade_crossing_in_steps_of_any_length_leaves_two_parts() {
+    for name in MESHES {
+        for steps in [7, 30, 100] {
+            let mut run = Run::new(name, CutOptions::SCALPEL);
+            let path = straight_path(&run.bounds(), steps);
+            run.sweep(&format!("{steps} steps"), &path);
+            assert_eq!(run.parts(), 2, "{name}, {steps} steps");
+        }
+    }
+}
+
+/// A vertical blade moving along an arc around a centre off the body's corner, turning by
+/// `step_deg` per step, from outside the body (-x side) to outside (-y side): it cuts a
+/// corner off. The first `stop` positions make an incision that ends inside the body.
+fn arc(b: &Aabb, step_deg: f64) -> impl Fn(usize) -> Blade + '_ {
+    let (c, d) = (b.center(), b.max - b.min);
+    let r = 0.6 * d.x.max(d.y);
+    let centre = DVec3::new(b.min.x - 0.1 * d.x, c.y - r, c.z);
+    move |k| {
+        let a = (98.0 - step_deg * k as f64).to_radians();
+        let p = centre + DVec3::new(r * a.cos(), r * a.sin(), 0.0);
+        vertical(b, p.x, p.y)
+    }
+}
+
+#[test]
+fn a_turning_incision_stopped_inside_then_extended_cuts_a_corner_off() {
+    for name in MESHES {
+        for step_deg in [8.0, 1.0] {
+            let mut run = Run::new(name, CutOptions::SCALPEL);
+            let b = run.bounds();
+            let at = arc(&b, step_deg);
+            let n = (128.0 / step_deg) as usize;
+            let stop = n * 5 / 16;
+            let first: Vec<Blade> = (0..=stop).map(&at).collect();
+            run.sweep(&format!("{step_deg}°/step, first part"), &first);
+            assert_eq!(
+                run.parts(),
+                1,
+                "{name}: a partial incision separated the body"
+            );
+            let rest: Vec<Blade> = (stop..=n).map(&at).collect();
+            run.sweep(&format!("{step_deg}°/step, extension"), &rest);
+            assert_eq!(
+                run.parts(),
+                2,
+                "{name}, {step_deg}°/step: corner not cut off"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_tilting_blade_across_the_body_leaves_two_parts() {
+    // Every sweep is non-planar (two triangles): the blade leans a little more or less at
+    // each step, so each step continues the last at an angle.
+    for name in MESHES {
+        let mut run = Run::new(name, CutOptions::SCALPEL);
+        let b = run.bounds();
+        let (c, d) = (b.center(), b.max - b.min);
+        let blade = |k: usize| {
+            let x = b.min.x - 0.05 * d.x + 1.1 * d.x * k as f64 / 10.0;
+            let tilt = 0.06 * d.y * ((k as f64) * 0.9).sin();
+            [
+                DVec3::new(x, c.y + tilt, b.min.z - 0.1 * d.z),
+                DVec3::new(x, c.y - tilt + 0.01 * d.y, b.max.z + 0.1 * d.z),
+            ]
+        };
+        let path: Vec<Blade> = (0..=10).map(blade).collect();
+        run.sweep("tilting", &path);
+        assert_eq!(run.parts(), 2, "{name}");
+    }
+}
+
+/// A blade cutting from above the body down to mid-depth, moved along `from`→`to` in steps.
+fn shallow_path(b: &Aabb, from: (f64, f64), to: (f64, f64), steps: usize) -> Vec<Blade> {
+    let d = b.max - b.min;
+    let depth = b.min.z + 0.45 * d.z;
+    (0..=steps)
+        .map(|k| {
+            let t = k as f64 / steps as f64;
+            let (x, y) = (from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1));
+            [
+                DVec3::new(x, y, b.max.z + 0.1 * d.z),
+                DVec3::new(x, y, depth),
+            ]
+        })
+        .collect()
+}
+
+/// The parts of `name` cut at once by the rectangles a shallow blade sweeps along each
+/// straight path (each path is planar: its swept area is one rectangle).
+fn parts_cut_at_once(name: &str, paths: &[Vec<Blade>]) -> usize {
+    let mut cutter = Cutter::new(mesh(name).clone(), CutOptions::SCALPEL).expect("options");
+    for path in paths {
+        let (a, z) = (path[0], path[path.len() - 1]);
+        let rect = mtcut::geom::CutPolygon::new(&[a[0], a[1], z[1], z[0]]).expect("rectangle");
+        cutter.cut(&rect).expect("cut");
+    }
+    assert!(cutter.mesh().validate().is_valid());
+    Components::of(cutter.mesh()).count
+}
+
+#[test]
+fn incisions_meeting_and_crossing_an_earlier_one_keep_the_mesh_valid() {
+    for name in MESHES {
+        // T: a shallow incision along x, then one from outside the body ending on it.
+        let mut run = Run::new(name, CutOptions::SCALPEL);
+        let b = run.bounds();
+        let (c, d) = (b.center(), b.max - b.min);
+        let (x0, x1) = (b.min.x - 0.05 * d.x, b.max.x + 0.05 * d.x);
+        let (y0, y1) = (b.min.y - 0.05 * d.y, b.max.y + 0.05 * d.y);
+        let ya = c.y + 0.013 * d.y;
+        let first = shallow_path(&b, (x0, ya), (x1, ya), 8);
+        run.sweep("first incision", &first);
+        let xt = c.x - 0.21 * d.x;
+        let t = shallow_path(&b, (xt, y0), (xt, ya), 6);
+        run.sweep("T", &t);
+        // As many parts as the two swept rectangles cut at once give.
+        assert_eq!(
+            run.parts(),
+            parts_cut_at_once(name, &[first.clone(), t]),
+            "{name}: T"
+        );
+
+        // X: a shallow incision across the body in y, then one across it in x.
+        let mut run = Run::new(name, CutOptions::SCALPEL);
+        let xx = c.x + 0.17 * d.x;
+        let across = shallow_path(&b, (xx, y0), (xx, y1), 10);
+        run.sweep("first incision", &across);
+        run.sweep("X", &first);
+        assert_eq!(
+            run.parts(),
+            parts_cut_at_once(name, &[across, first]),
+            "{name}: X"
+        );
+    }
+}
