@@ -356,6 +356,16 @@ static void check_cut(mtcut_mesh *mesh) {
   o.struct_size = sizeof o;
   EXPECT(mtcut_cut_options_default(&o), MTCUT_STATUS_OK);
   UNTOUCHED(o.struct_size == sizeof o && o.scheme == MTCUT_CUT_SCHEME_LUT && o.snap > 0.0);
+  {
+    mtcut_cut_options sc;
+    memset(&sc, 0, sizeof sc);
+    EXPECT(mtcut_cut_options_scalpel(NULL), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_cut_options_scalpel(&sc), MTCUT_STATUS_INVALID_ARGUMENT); /* struct_size 0 */
+    UNTOUCHED(sc.snap == 0.0 && sc.continue_cracks == 0);
+    sc.struct_size = sizeof sc;
+    EXPECT(mtcut_cut_options_scalpel(&sc), MTCUT_STATUS_OK);
+    UNTOUCHED(sc.continue_cracks == 1 && sc.snap < o.snap && sc.face_point_margin < o.face_point_margin);
+  }
 
   memset(&st, 0, sizeof st);
   st.struct_size = sizeof st;

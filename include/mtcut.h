@@ -228,6 +228,15 @@ typedef struct mtcut_cut_options {
    * mesh), reported in `mtcut_cut_stats.components`. Default 1.
    */
   uint32_t count_components;
+  /**
+   * Nonzero: continue the cracks of earlier cuts of this mesh handle, as a scalpel moved
+   * in steps needs (vertices on the plane just outside the polygon and the crack tips of
+   * earlier cuts near it count as on the cut; see `mtcut_cut_options_scalpel`). Default
+   * 0 (`mtcut_cut_options_default`), 1 (`mtcut_cut_options_scalpel`). A caller whose
+   * struct ends before this field (built against an older header) gets 0 for a cut, 1
+   * for a scalpel sweep.
+   */
+  uint32_t continue_cracks;
 } mtcut_cut_options;
 
 /**
@@ -1029,6 +1038,19 @@ mtcut_status mtcut_mesh_remove_attribute(struct mtcut_mesh *mesh,
 mtcut_status mtcut_cut_options_default(struct mtcut_cut_options *options);
 
 /**
+ * Fills the fields of `*options` within `options->struct_size` (which the caller sets
+ * first) with the options of a scalpel moved in steps (cracks continued, face points at
+ * the smallest margin 0.01, snap 1e-6; the default of `mtcut_mesh_scalpel_sweep`): each
+ * step continues the crack of the last, whether the blade moves straight, turns or
+ * tilts. With the default options such steps leave bridges of material and loose chips,
+ * and from about 30 steps across a body flat tets.
+ *
+ * # Safety
+ * `options` must be a writable `mtcut_cut_options` whose `struct_size` is set.
+ */
+mtcut_status mtcut_cut_options_scalpel(struct mtcut_cut_options *options);
+
+/**
  * Cuts `mesh` with the planar convex polygon whose `n_points` corners, in order around
  * it, are at `polygon_xyz` (x, y, z of each), with the default options: every tet the
  * polygon crosses is replaced by tets it does not cross, and the two sides of the cut
@@ -1071,8 +1093,12 @@ mtcut_status mtcut_mesh_cut_with_options(struct mtcut_mesh *mesh,
  * quadrilateral is cut as one polygon when it is planar and convex, else as two
  * triangles (along its shorter diagonal); an end that does not move makes it one
  * triangle. A blade that does not move, or a sweep that folds over itself, gives
- * `MTCUT_STATUS_INVALID_ARGUMENT` with the mesh unchanged. Options and statistics as in
- * `mtcut_mesh_cut_with_options`; for two triangles the counts and times add up. (The one
+ * `MTCUT_STATUS_INVALID_ARGUMENT` with the mesh unchanged. Called once per time step on
+ * the same handle, each step continues the crack the earlier ones made (the handle keeps
+ * its crack tips): with NULL options those of `mtcut_cut_options_scalpel`, which a blade
+ * moving straight, turning or tilting needs; start from them to change options.
+ * Statistics as in `mtcut_mesh_cut_with_options`; for two triangles the counts and times
+ * add up. (The one
  * failure found after the first triangle was applied: the second would make the mesh
  * exceed 2^31 vertices or tets; the mesh then keeps the first triangle's cut.)
  *

@@ -272,6 +272,48 @@ fn a_scalpel_sweep_cuts_where_the_blade_went() {
 }
 
 #[test]
+fn a_turning_blade_swept_step_by_step_continues_its_crack() {
+    // A vertical blade moving along an arc through the liver, 8° per call, from outside
+    // the body (-x) to outside (-y): each call continues the crack of the last (the handle
+    // keeps its crack tips; NULL options are the scalpel's), so the corner comes off: two
+    // parts, the mesh valid after every step.
+    let m = read("liver.node");
+    let (mut lo, mut hi) = ([0.0; 3], [0.0; 3]);
+    ok(unsafe { mtcut_mesh_bounding_box(m.0, lo.as_mut_ptr(), hi.as_mut_ptr()) });
+    let v0 = volume(&m);
+    let d = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    let r = 0.6 * d[0].max(d[1]);
+    let centre = [lo[0] - 0.1 * d[0], 0.5 * (lo[1] + hi[1]) - r];
+    let blade = |k: usize| {
+        let a = (98.0 - 8.0 * k as f64).to_radians();
+        let (x, y) = (centre[0] + r * a.cos(), centre[1] + r * a.sin());
+        [x, y, lo[2] - 0.1 * d[2], x, y, hi[2] + 0.1 * d[2]]
+    };
+    for k in 0..16 {
+        let (start, end) = (blade(k), blade(k + 1));
+        let mut s = cut_stats();
+        ok(unsafe {
+            mtcut_mesh_scalpel_sweep(m.0, start.as_ptr(), end.as_ptr(), ptr::null(), &mut s)
+        });
+        assert_valid(&m, &format!("step {k}"));
+        assert!((volume(&m) - v0).abs() <= 1e-12 * v0, "step {k}");
+    }
+    assert_eq!(components(&m), 2, "the corner did not come off");
+    // The same steps without continuing cracks leave bridges: the body stays in one part.
+    let m = read("liver.node");
+    let mut o = cut_options();
+    ok(unsafe { mtcut_cut_options_scalpel(&mut o) });
+    o.continue_cracks = 0;
+    for k in 0..16 {
+        let (start, end) = (blade(k), blade(k + 1));
+        ok(unsafe {
+            mtcut_mesh_scalpel_sweep(m.0, start.as_ptr(), end.as_ptr(), &o, ptr::null_mut())
+        });
+    }
+    assert_eq!(components(&m), 1);
+}
+
+#[test]
 fn an_extracted_mesh_carries_the_model_columns_and_can_be_cut() {
     let input = read("pinion-coarse.node");
     let mt = build(&input, None);

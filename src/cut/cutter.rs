@@ -214,6 +214,23 @@ impl Cutter {
         &self.scales
     }
 
+    /// The crack tips this cutter's cuts made (face points), which its later cuts take as on
+    /// the cut near their polygon when they continue cracks
+    /// ([`CutOptions::continue_cracks`]); `None` for an MT frontier
+    /// ([`Cutter::for_mt_frontier`]), which does not take them.
+    pub fn crack_tips(&self) -> Option<&CrackTips> {
+        self.tips.as_ref()
+    }
+
+    /// Replaces the crack tips (a mesh cut earlier by another cutter whose tips were kept:
+    /// [`crack_tips`](Self::crack_tips)), so that this cutter's cuts continue those cracks.
+    /// Ignored by an MT frontier.
+    pub fn set_crack_tips(&mut self, tips: CrackTips) {
+        if self.tips.is_some() {
+            self.tips = Some(tips);
+        }
+    }
+
     /// Number of cuts applied so far (the value [`CUT_COLUMN`] gives the tets of the next
     /// cut, minus one).
     pub fn cuts_applied(&self) -> u32 {
@@ -461,7 +478,7 @@ impl Cutter {
 
         let t = Instant::now();
         add_vertices(&mut self.mesh, &mut self.scales, &origins);
-        if let Some(tips) = self.tips.as_mut().filter(|_| opts.continue_cracks) {
+        if let Some(tips) = self.tips.as_mut() {
             tips.insert_face_points(first, &origins);
         }
         self.cuts_applied += 1;

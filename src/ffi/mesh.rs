@@ -3,6 +3,7 @@
 
 use super::guard::{Out, OutSlice, c_str, deref, deref_mut, run, run_count, slice};
 use super::status::{Failure, FfiResult, mtcut_status};
+use crate::cut::CrackTips;
 use crate::geom::DVec3;
 use crate::mesh::TetMesh;
 use std::ffi::{CStr, c_char};
@@ -17,11 +18,17 @@ use std::path::PathBuf;
 /// from several threads at once; the others need exclusive access.
 pub struct mtcut_mesh {
     pub(crate) mesh: TetMesh,
+    /// The crack tips the handle's cuts made, so a scalpel's next step continues them
+    /// (`continue_cracks`): vertex ids, which only cuts change (they append).
+    pub(crate) tips: CrackTips,
 }
 
 impl mtcut_mesh {
     pub(crate) fn boxed(mesh: TetMesh) -> *mut mtcut_mesh {
-        Box::into_raw(Box::new(mtcut_mesh { mesh }))
+        Box::into_raw(Box::new(mtcut_mesh {
+            mesh,
+            tips: CrackTips::default(),
+        }))
     }
 }
 
