@@ -12,7 +12,7 @@
 mod cut_common;
 
 use cut_common::{MESHES, mesh};
-use mtcut::cut::{Components, CutOptions, Cutter};
+use mtcut::cut::{Components, CutOptions, Cutter, MIN_FACE_POINT_MARGIN};
 use mtcut::geom::{Aabb, DVec3, Tolerance, scalpel_sweep};
 
 /// A blade position: the segment between two points.
@@ -237,4 +237,48 @@ fn incisions_meeting_and_crossing_an_earlier_one_keep_the_mesh_valid() {
             "{name}: X"
         );
     }
+}
+
+#[test]
+fn with_the_default_snap_a_step_that_would_make_a_flat_tet_is_refused() {
+    // The default snap (0.2) is meant for independent cuts: with the smallest face-point
+    // margin and swept in many steps, a blade's crack tips land next to snapped vertices
+    // and some step would make a flat tet. The cut checks every child's orientation exactly before it changes
+    // the mesh: such a step is refused, naming the tet, and the mesh stays as it was; no
+    // step leaves a tet that is not positively oriented. (Such sweeps can still leave
+    // other defects, a crack tip lying in another crack's face: hence CutOptions::SCALPEL.)
+    let mut refused = 0;
+    for name in MESHES {
+        let input = mesh(name);
+        let options = CutOptions::DEFAULT.with_face_point_margin(MIN_FACE_POINT_MARGIN);
+        let mut cutter = Cutter::new(input.clone(), options).expect("options");
+        for w in straight_path(&input.bbox(), 100).windows(2) {
+            for polygon in scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).expect("sweep") {
+                let before = cutter.mesh().clone();
+                match cutter.cut(&polygon) {
+                    Ok(_) => {}
+                    Err(e @ mtcut::cut::CutError::FlatChild { .. }) => {
+                        refused += 1;
+                        assert!(e.to_string().contains("flat or inverted"), "{e}");
+                        assert_eq!(
+                            cutter.mesh(),
+                            &before,
+                            "{name}: a refused cut changed the mesh"
+                        );
+                    }
+                    Err(e) => panic!("{name}: {e}"),
+                }
+                let m = cutter.mesh();
+                let inverted = m.tets().iter().position(|t| {
+                    let [a, b, c, d] = t.map(|v| m.position(v));
+                    mtcut::geom::orient3d(a, b, c, d) != mtcut::geom::Sign::Positive
+                });
+                assert_eq!(inverted, None, "{name}: a tet is flat or inverted");
+            }
+        }
+    }
+    assert!(
+        refused > 0,
+        "no step was refused: this test no longer shows the check"
+    );
 }

@@ -244,7 +244,10 @@ impl Cutter {
     /// The cut is planned in full before the mesh changes. A snapped vertex that copies
     /// cannot separate (a "pinched" one, see [`super::unglue`]) is left unsnapped: only the
     /// tets around it are classified and split again, and the plan checked again. This
-    /// keeps the result a manifold mesh.
+    /// keeps the result a manifold mesh. Every new tet's orientation is then checked
+    /// exactly at its vertices' rounded positions: a cut that would make a flat or
+    /// inverted tet is refused ([`CutError::FlatChild`]) and the mesh is left unchanged
+    /// (with the look-up tables; the 1:17 scheme's output is not checked).
     pub fn cut(&mut self, polygon: &CutPolygon) -> Result<CutResult, CutError> {
         let opts = self.options;
         let start = Instant::now();
@@ -474,10 +477,54 @@ impl Cutter {
             }
         }
         drop(session);
+        // New vertices are combinations of older ones only: their positions (as rounded,
+        // which is what the mesh will hold) can be computed before anything changes.
+        let new_positions = origin_positions(self.mesh.positions(), &origins);
         times.classify += t.elapsed().as_secs_f64();
 
+        // Every child positively oriented, exactly, at those positions: the tables make
+        // positive children for any position of the cut points on their edges and of the
+        // face points in their faces, but a point rounded onto a neighbour (a face point
+        // placed by the margin next to a snapped vertex, say) makes a flat or inverted
+        // one. Such a cut is refused, the mesh unchanged, rather than leaving an invalid
+        // mesh. (The 1:17 scheme, a baseline whose output is not a valid mesh anyway —
+        // it does not conform — makes flat children at snapped vertices by design.)
         let t = Instant::now();
-        add_vertices(&mut self.mesh, &mut self.scales, &origins);
+        let at = |v: VertexId| {
+            if v.idx() < n_vertices {
+                self.mesh.position(v)
+            } else {
+                new_positions[v.idx() - n_vertices]
+            }
+        };
+        let flat = |k: usize| {
+            let i = child_of[k];
+            i != NONE && {
+                let c = &children[i as usize];
+                c.tets[..c.len].iter().any(|t| {
+                    let [a, b, c, d] = t.map(at);
+                    crate::geom::orient3d(a, b, c, d) != Sign::Positive
+                })
+            }
+        };
+        let bad = if opts.scheme != Scheme::Lut {
+            None
+        } else if par(created_count) {
+            use rayon::prelude::*;
+            (0..tets.len()).into_par_iter().find_first(|&k| flat(k))
+        } else {
+            (0..tets.len()).find(|&k| flat(k))
+        };
+        if let Some(k) = bad {
+            return Err(CutError::FlatChild {
+                tet: cand[k].idx(),
+                case: children[child_of[k] as usize].case.name(),
+            });
+        }
+        times.split += t.elapsed().as_secs_f64();
+
+        let t = Instant::now();
+        add_vertices(&mut self.mesh, &mut self.scales, new_positions, &origins);
         if let Some(tips) = self.tips.as_mut() {
             tips.insert_face_points(first, &origins);
         }
@@ -676,12 +723,15 @@ pub(crate) fn check_positions(positions: &[DVec3], expected: usize) -> Result<()
     }
 }
 
-/// Appends the vertices of `origins` to `mesh` (positions, interpolated point data) and
-/// their scales to `scales`.
-fn add_vertices(mesh: &mut TetMesh, scales: &mut Vec<f64>, origins: &[VertexOrigin]) {
-    // New vertices are combinations of older ones only: positions can be computed first.
-    let new = origin_positions(mesh.positions(), origins);
-    mesh.positions_vec_mut().extend(new);
+/// Appends the vertices of `origins` to `mesh` (their `positions`, interpolated point
+/// data) and their scales to `scales`.
+fn add_vertices(
+    mesh: &mut TetMesh,
+    scales: &mut Vec<f64>,
+    positions: Vec<DVec3>,
+    origins: &[VertexOrigin],
+) {
+    mesh.positions_vec_mut().extend(positions);
     push_origin_rows(&mut mesh.point_data, scales, origins);
 }
 

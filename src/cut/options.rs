@@ -200,4 +200,10 @@ pub enum CutError {
     InvertedTet { tet: usize },
     #[error("the deformed positions fold tet {tet} of the MT, which the cut meets")]
     DeformationFolds { tet: usize },
+    #[error(
+        "the cut would replace tet {tet} (configuration {case}) by a flat or inverted tet: \
+         its new points round onto each other; for a scalpel moved in steps use the \
+         scalpel's options (CutOptions::SCALPEL), which continue cracks"
+    )]
+    FlatChild { tet: usize, case: &'static str },
 }

@@ -230,9 +230,9 @@ pub(super) unsafe fn points(xyz: *const f64, n: usize, arg: &str) -> FfiResult<V
         .collect())
 }
 
-/// Applies `polygons` in turn to `mesh`. Everything has been checked: the only failure
-/// left is a mesh outgrowing its ids (2^31 vertices or tets), which each cut detects
-/// before it changes anything.
+/// Applies `polygons` in turn to `mesh`. Everything has been checked: the only failures
+/// left are a mesh outgrowing its ids (2^31 vertices or tets) and a cut that would make a
+/// flat tet, which each cut detects before it changes anything.
 fn cut_with(
     mesh: &mut mtcut_mesh,
     polygons: &[CutPolygon],
