@@ -435,3 +435,63 @@ fn cut_of_an_extracted_level_keeps_the_mt_data() {
         1e-12
     ));
 }
+
+#[test]
+fn scalpel_sweeps_continue_their_crack() {
+    // A vertical blade moving along an arc through the liver, 8° per step, from outside
+    // the body to outside: its sweeps given in order with --scalpel cut a corner off (two
+    // parts, the mesh valid); a model refuses --scalpel.
+    use mtcut::geom::{Tolerance, scalpel_sweep};
+    let dir = scratch("cli_cut scalpel");
+    let b = input("liver.node").bbox();
+    let (c, d) = (b.center(), b.max - b.min);
+    let r = 0.6 * d.x.max(d.y);
+    let centre = DVec3::new(b.min.x - 0.1 * d.x, c.y - r, c.z);
+    let blade = |k: usize| {
+        let a = (98.0 - 8.0 * k as f64).to_radians();
+        let p = centre + DVec3::new(r * a.cos(), r * a.sin(), 0.0);
+        [
+            DVec3::new(p.x, p.y, b.min.z - 0.1 * d.z),
+            DVec3::new(p.x, p.y, b.max.z + 0.1 * d.z),
+        ]
+    };
+    let mut polygons: Vec<String> = Vec::new();
+    for k in 0..16 {
+        for p in scalpel_sweep(blade(k), blade(k + 1), Tolerance { relative: 1e-9 }).unwrap() {
+            let corners: Vec<String> = p
+                .points()
+                .iter()
+                .map(|q| format!("{:?},{:?},{:?}", q.x, q.y, q.z))
+                .collect();
+            polygons.push(corners.join(";"));
+        }
+    }
+    let (out, liver) = (dir.join("scalpel.vtu"), data("liver.node"));
+    let mut args = vec!["cut", s(&liver)];
+    for p in &polygons {
+        args.extend_from_slice(&["--polygon", p]);
+    }
+    args.extend_from_slice(&["--scalpel", "-o", s(&out), "--json"]);
+    let j = json(&args);
+    assert_eq!(j["valid"], true);
+    assert_eq!(j["components"], 2, "the corner did not come off");
+    let mesh = read_valid(&out);
+    assert_eq!(mtcut::cut::Components::of(&mesh).count, 2);
+    assert!(close(mesh.volume(), input("liver.node").volume(), 1e-12));
+
+    let model = dir.join("liver.mt");
+    ok(&["build", s(&data("liver.node")), "-o", s(&model), "--quiet"]);
+    fails(
+        &[
+            "cut",
+            s(&model),
+            "--polygon",
+            &polygons[0],
+            "--scalpel",
+            "-o",
+            s(&dir.join("cut.mt")),
+        ],
+        &["--scalpel", "mtcut scalpel", "nothing written"],
+    );
+    assert!(!dir.join("cut.mt").exists());
+}

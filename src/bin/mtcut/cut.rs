@@ -61,6 +61,12 @@ pub struct Args {
     /// their lowest tet) instead of one file. Meshes only.
     #[arg(long)]
     pub separate: bool,
+    /// The polygons are the consecutive sweeps of a scalpel (each begins where the last
+    /// ended): cut with the scalpel's options, each continuing the crack of the earlier
+    /// ones (cracks continued, face points at the smallest margin, almost no snapping).
+    /// Meshes only (`mtcut scalpel` moves a blade through a model).
+    #[arg(long)]
+    pub scalpel: bool,
     /// Print one JSON object on stdout instead of text.
     #[arg(long)]
     pub json: bool,
@@ -138,7 +144,12 @@ pub fn run(args: Args) -> CliResult {
     let read_seconds = t_read.elapsed().as_secs_f64();
     let (tets_before, vertices_before, volume_before) =
         (mesh.nb_tets(), mesh.nb_vertices(), mesh.volume());
-    let options = CutOptions::DEFAULT.with_scheme(args.scheme.scheme());
+    let base = if args.scalpel {
+        CutOptions::SCALPEL
+    } else {
+        CutOptions::DEFAULT
+    };
+    let options = base.with_scheme(args.scheme.scheme());
     let mut cutter = Cutter::new(mesh, options)?;
     let prepare_seconds = cutter.build_time().as_secs_f64();
     let mut stats: Vec<CutStats> = Vec::with_capacity(polys.len());

@@ -38,6 +38,14 @@ pub fn run(args: Args) -> CliResult {
         )
         .into());
     }
+    if args.scalpel {
+        return Err(format!(
+            "{}: --scalpel cuts a mesh; to move a scalpel through a model use `mtcut \
+             scalpel MODEL.mt --path PATH.json`; nothing written",
+            args.mesh.display()
+        )
+        .into());
+    }
     if args.separate {
         return Err(format!(
             "{}: --separate writes meshes, but a cut model is written whole as one .mt; \
