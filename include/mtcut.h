@@ -114,7 +114,10 @@ typedef struct mtcut_live mtcut_live;
  * made (checked on the way in). Created by `mtcut_mesh_from_arrays`, `mtcut_mesh_read`,
  * `mtcut_mesh_clone` or `mtcut_mesh_extract_component`; owned by the caller, released
  * with `mtcut_mesh_free`. Functions taking a `const mtcut_mesh *` may run on one mesh
- * from several threads at once; the others need exclusive access.
+ * from several threads at once; the others need exclusive access. After its first cut a
+ * mesh keeps what cutting it needs (a hierarchy over its tets, vertex scales, the crack
+ * tips), so later cuts cost time in proportion to the tets they touch, not to the mesh;
+ * `mtcut_mesh_set_vertices` drops it (rebuilt at the next cut).
  */
 typedef struct mtcut_mesh mtcut_mesh;
 
@@ -842,8 +845,8 @@ mtcut_status mtcut_mesh_set_vertices(struct mtcut_mesh *mesh,
                                      size_t n_vertices);
 
 /**
- * A deep copy of `mesh` (geometry and attributes) into `*out`, to free with
- * `mtcut_mesh_free`.
+ * A deep copy of `mesh` (geometry, attributes, and the crack tips its cuts made, so a
+ * scalpel can go on in the copy) into `*out`, to free with `mtcut_mesh_free`.
  *
  * # Safety
  * `mesh` must be a live mesh handle; `out` a writable pointer.

@@ -314,6 +314,93 @@ fn a_turning_blade_swept_step_by_step_continues_its_crack() {
 }
 
 #[test]
+fn a_mesh_keeps_its_cutter_between_cuts() {
+    // The first cut prepares the hierarchy and scales (reported), later ones reuse them:
+    // the result is the Rust `Cutter`'s, kept across the same cuts; an attribute edit
+    // between cuts keeps the cutter, moving the vertices drops it (rebuilt at the next
+    // cut), and a clone carries the crack tips.
+    use mtcut::cut::{CutOptions, Cutter};
+    use mtcut::geom::{CutPolygon, DVec3};
+    let m = read("liver.node");
+    let input = mtcut::io::read_mesh(common::data("liver.node")).unwrap().0;
+    let b = input.bbox();
+    let (c, d) = (b.center(), b.max - b.min);
+    let squares: Vec<[f64; 12]> = (0..3)
+        .map(|k| {
+            let z = c.z + (k as f64 - 1.0) * 0.2 * d.z;
+            let (x0, x1, y0, y1) = (b.min.x - 1.0, b.max.x + 1.0, b.min.y - 1.0, c.y);
+            [x0, y0, z, x1, y0, z + 1.0, x1, y1, z + 1.0, x0, y1, z]
+        })
+        .collect();
+    let mut reference = Cutter::new(input.clone(), CutOptions::DEFAULT).unwrap();
+    for (k, sq) in squares.iter().enumerate() {
+        let mut s = cut_stats();
+        ok(unsafe { mtcut_mesh_cut(m.0, sq.as_ptr(), 4, &mut s) });
+        assert_eq!(
+            s.seconds_build > 0.0,
+            k == 0,
+            "cut {k}: {}",
+            s.seconds_build
+        );
+        let corners: Vec<DVec3> = sq.chunks(3).map(|p| DVec3::new(p[0], p[1], p[2])).collect();
+        reference.cut(&CutPolygon::new(&corners).unwrap()).unwrap();
+        assert_eq!(tet_count(&m), reference.mesh().nb_tets(), "cut {k}");
+        if k == 0 {
+            // An attribute edit keeps the cutter.
+            let temp = vec![1.0; unsafe { mtcut_mesh_vertex_count(m.0) }];
+            let name = CString::new("temperature").unwrap();
+            ok(unsafe {
+                mtcut_mesh_set_attribute(
+                    m.0,
+                    MTCUT_LOCATION_VERTEX,
+                    name.as_ptr(),
+                    temp.as_ptr(),
+                    temp.len(),
+                    1,
+                )
+            });
+        }
+    }
+    assert_valid(&m, "three cuts");
+    let n = unsafe { mtcut_mesh_vertex_count(m.0) };
+    let mut xyz = vec![0.0; 3 * n];
+    ok(unsafe { mtcut_mesh_copy_vertices(m.0, xyz.as_mut_ptr(), n) });
+    let moved = reference.mesh().positions();
+    for (p, q) in xyz.chunks(3).zip(moved) {
+        assert_eq!(
+            [p[0], p[1], p[2]],
+            q.to_array(),
+            "the C mesh is the Rust cutter's"
+        );
+    }
+    // Moving the vertices (here: a translation) drops the cutter; the next cut rebuilds it.
+    for x in xyz.iter_mut().step_by(3) {
+        *x += 0.5;
+    }
+    ok(unsafe { mtcut_mesh_set_vertices(m.0, xyz.as_ptr(), n) });
+    let mut s = cut_stats();
+    let mut sq = squares[1];
+    for x in sq.iter_mut().step_by(3) {
+        *x += 0.5;
+    }
+    sq[2] += 0.1 * d.z;
+    sq[5] += 0.1 * d.z;
+    sq[8] += 0.1 * d.z;
+    sq[11] += 0.1 * d.z;
+    ok(unsafe { mtcut_mesh_cut(m.0, sq.as_ptr(), 4, &mut s) });
+    assert!(
+        s.seconds_build > 0.0,
+        "moved vertices: the hierarchy is rebuilt"
+    );
+    assert_valid(&m, "after moving");
+    let mut copy = ptr::null_mut();
+    ok(unsafe { mtcut_mesh_clone(m.0, &mut copy) });
+    let copy = Mesh(copy);
+    assert_eq!(tet_count(&copy), tet_count(&m));
+    assert_valid(&copy, "clone");
+}
+
+#[test]
 fn an_extracted_mesh_carries_the_model_columns_and_can_be_cut() {
     let input = read("pinion-coarse.node");
     let mt = build(&input, None);

@@ -163,6 +163,13 @@ impl Cutter {
         self.mesh
     }
 
+    /// The mesh, for the C ABI's attribute edits only: its attribute columns may change
+    /// (the cutter keeps them as long as the mesh's elements, as every cut does), never
+    /// its positions or tets, which the hierarchy and scales describe.
+    pub(crate) fn mesh_for_attributes(&mut self) -> &mut TetMesh {
+        &mut self.mesh
+    }
+
     pub fn options(&self) -> &CutOptions {
         &self.options
     }

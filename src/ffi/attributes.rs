@@ -105,7 +105,7 @@ pub unsafe extern "C" fn mtcut_mesh_set_attribute(
         // SAFETY: the caller's contract, forwarded to the checks.
         let (mesh, name, values) = unsafe {
             (
-                &mut deref_mut(mesh, "mesh")?.mesh,
+                deref_mut(mesh, "mesh")?.mesh_for_attributes(),
                 name_arg(name)?,
                 slice(
                     values,
@@ -269,7 +269,12 @@ pub unsafe extern "C" fn mtcut_mesh_remove_attribute(
 ) -> mtcut_status {
     run("mtcut_mesh_remove_attribute", || {
         // SAFETY: the caller's contract, forwarded to the checks.
-        let (mesh, name) = unsafe { (&mut deref_mut(mesh, "mesh")?.mesh, name_arg(name)?) };
+        let (mesh, name) = unsafe {
+            (
+                deref_mut(mesh, "mesh")?.mesh_for_attributes(),
+                name_arg(name)?,
+            )
+        };
         let (columns, _) = columns_mut(mesh, location)?;
         find(columns, name, location)?;
         columns.remove(name);

@@ -5,7 +5,7 @@ use super::guard::{Out, deref_mut, run, slice};
 use super::mesh::{flat_len, mtcut_mesh};
 use super::status::{Failure, FfiResult, mtcut_status};
 use super::versioned::{Versioned, VersionedOut, read_optional};
-use crate::cut::{CutError, CutOptions, CutStats, Cutter, Scheme};
+use crate::cut::{CutError, CutOptions, CutStats, Scheme};
 use crate::geom::{CutPolygon, DVec3, PolygonError, Tolerance, scalpel_sweep};
 use std::mem::offset_of;
 
@@ -173,7 +173,8 @@ pub struct mtcut_cut_stats {
     /// Connected components after the cut; `SIZE_MAX` when they were not counted
     /// (`mtcut_cut_options.count_components` 0).
     pub components: usize,
-    /// Building the tets' hierarchy and the vertices' scales (each cut call does it).
+    /// Building the tets' hierarchy and the vertices' scales: on a mesh's first cut (and
+    /// the first after `mtcut_mesh_set_vertices`), 0 on the others, which reuse them.
     pub seconds_build: f64,
     /// The cut itself: finding the candidates, classifying, splitting, separating.
     pub seconds_cut: f64,
@@ -238,9 +239,7 @@ fn cut_with(
     polygons: &[CutPolygon],
     options: CutOptions,
 ) -> FfiResult<mtcut_cut_stats> {
-    let mut cutter = Cutter::new(std::mem::take(&mut mesh.mesh), options).map_err(cut_failure)?;
-    cutter.set_crack_tips(std::mem::take(&mut mesh.tips));
-    let build = cutter.build_time().as_secs_f64();
+    let (cutter, build) = mesh.cutter(options).map_err(cut_failure)?;
     let mut stats = mtcut_cut_stats::default();
     let mut result = Ok(());
     for p in polygons {
@@ -252,8 +251,6 @@ fn cut_with(
             }
         }
     }
-    mesh.tips = cutter.crack_tips().cloned().unwrap_or_default();
-    mesh.mesh = cutter.into_mesh();
     result.map(|()| stats)
 }
 
