@@ -2,7 +2,8 @@
 //! 12 steps writes 13 valid meshes listed in a .pvd, the body parts at the step the blade
 //! leaves it, and the saved model is valid with two components; bad path files fail with
 //! a message naming the problem; a turning path stops at the step that breaks the model,
-//! keeping the steps before it and saving nothing.
+//! keeping the steps before it and saving nothing. Given a mesh, the scalpel cuts the mesh
+//! itself, and a turning blade works.
 
 mod cli_support;
 mod common;
@@ -233,4 +234,55 @@ fn time_critical_steps_cut_the_current_mesh_first() {
     assert!(back.validate().is_valid());
     assert_eq!(back.nb_components(), 2);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_turning_blade_cuts_a_plain_mesh_step_by_step() {
+    // Given a mesh, the scalpel cuts the mesh itself, each step continuing the crack: a
+    // vertical blade turning by 8° per step cuts a corner off the liver (two parts at the
+    // end, every step's mesh valid), where a model's scalpel stops at the first turn.
+    let dir = scratch("cli_scalpel_mesh");
+    let liver = data("liver.node");
+    let b = mtcut::io::read_mesh(&liver).unwrap().0.bbox();
+    let (c, d) = (b.center(), b.max - b.min);
+    let r = 0.6 * d.x.max(d.y);
+    let centre = [b.min.x - 0.1 * d.x, c.y - r];
+    let blades: Vec<[[f64; 3]; 2]> = (0..=16)
+        .map(|k| {
+            let a = (98.0 - 8.0 * k as f64).to_radians();
+            let (x, y) = (centre[0] + r * a.cos(), centre[1] + r * a.sin());
+            [[x, y, b.min.z - 0.1 * d.z], [x, y, b.max.z + 0.1 * d.z]]
+        })
+        .collect();
+    let path = dir.join("path.json");
+    write_path(&path, &blades);
+    let (out, saved) = (dir.join("series"), dir.join("cut.vtu"));
+    let j = json(&scalpel_args(&liver, &path, &out, &saved, &["--json"]));
+    assert_eq!(j["steps"].as_array().expect("steps").len(), 16, "{j}");
+    assert_eq!(j["components"], 2, "{j}");
+    let pvd = std::fs::read_to_string(out.join("scalpel.pvd")).expect("pvd");
+    for k in 0..=16 {
+        let name = format!("step-{k:04}.vtu");
+        assert!(pvd.contains(&name), "{name} not listed");
+        read_valid(&out.join(&name));
+    }
+    let cut = read_valid(&saved);
+    assert_eq!(Components::of(&cut).count, 2);
+
+    // Options of a model are refused for a mesh, as is a model's file name for --save.
+    let series = dir.join("refused");
+    for (extra, needle) in [
+        (&["--threshold", "0.1"][..], "--threshold"),
+        (&["--time-critical"][..], "--time-critical"),
+    ] {
+        let mut a = vec!["scalpel", s(&liver), "--path", s(&path), "-o", s(&series)];
+        a.extend_from_slice(extra);
+        fails(&a, &[needle, "nothing written"]);
+    }
+    let as_model = dir.join("cut.mt");
+    fails(
+        &scalpel_args(&liver, &path, &series, &as_model, &[]),
+        &["unknown output format"],
+    );
+    assert!(!series.exists(), "a refused run wrote its folder");
 }

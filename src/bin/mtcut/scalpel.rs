@@ -15,12 +15,18 @@
 //! A step that leaves an invalid model (see [`mtcut::cut::scalpel`]'s limits: a path
 //! that turns breaks the coarser levels) stops the run with an error naming the step;
 //! the steps before it stay written and listed, and `--save` writes nothing.
+//!
+//! Given a mesh instead of a model (any readable mesh file), the scalpel cuts the mesh
+//! itself, each step continuing the crack of the earlier ones
+//! ([`mtcut::cut::CutOptions::SCALPEL`]: a blade that turns or tilts works there), the mesh
+//! validated after each step; `--save` then names a mesh file for the cut mesh.
 
 use crate::CliResult;
 use crate::parse;
-use mtcut::cut::{Blade, LiveMt, PendingBudget, Scalpel};
+use mtcut::cut::{Blade, CutOptions, Cutter, LiveMt, PendingBudget, Scalpel};
 use mtcut::geom::{DVec3, Tolerance, scalpel_sweep};
-use mtcut::io::{PvdEntry, write_mesh, write_pvd};
+use mtcut::io::{PvdEntry, read_mesh, write_mesh, write_pvd};
+use mtcut::mesh::TetMesh;
 use mtcut::mt::{ExtractOptions, Mt};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -40,7 +46,7 @@ pub struct Resolution {
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// The model (.mt).
+    /// The model (.mt), or a mesh (.vtu, .node/.ele, .mesh) to cut itself.
     model: PathBuf,
     /// The blade's positions over time (JSON, see `mtcut scalpel --help`).
     #[arg(long, value_name = "PATH.json")]
@@ -54,7 +60,8 @@ pub struct Args {
     /// time-critical cut), timing both.
     #[arg(long)]
     time_critical: bool,
-    /// Also write the cut model after the last step (.mt).
+    /// Also write the cut model after the last step (.mt; for a mesh: the cut mesh, .vtu
+    /// or .node/.ele).
     #[arg(long, value_name = "OUT.mt")]
     save: Option<PathBuf>,
     /// Print the statistics as one JSON object.
@@ -116,6 +123,9 @@ fn read_path(path: &Path) -> Result<Vec<Blade>, String> {
 }
 
 pub fn run(args: Args) -> CliResult {
+    if !crate::info::is_model(&args.model) {
+        return run_mesh(&args);
+    }
     if let Some(save) = &args.save {
         parse::model_output(save)?;
     }
@@ -315,4 +325,124 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
     }
     let seconds = start.elapsed().as_secs_f64();
     finish(args, live.into_mt()?, steps, entries.len(), seconds)
+}
+
+/// A scalpel through a mesh (not a model): each step cuts the mesh with the area the blade
+/// swept, continuing the crack ([`CutOptions::SCALPEL`]); the mesh is validated and
+/// written after each step.
+fn run_mesh(args: &Args) -> CliResult {
+    let refused = |option: &str| -> CliResult {
+        Err(format!(
+            "{}: {option} is for a model (.mt); a mesh is cut at its own resolution, as a \
+             simulation's mesh; nothing written",
+            args.model.display()
+        )
+        .into())
+    };
+    if args.resolution.threshold.is_some() || args.resolution.budget.is_some() {
+        return refused("--threshold/--budget");
+    }
+    if args.time_critical {
+        return refused("--time-critical");
+    }
+    if let Some(save) = &args.save {
+        parse::mesh_output(save)?;
+    }
+    let blades = read_path(&args.path)?;
+    let (mesh, _) = read_mesh(&args.model)?;
+    std::fs::create_dir_all(&args.output).map_err(|e| format!("{}: {e}", args.output.display()))?;
+    let mut cutter = Cutter::new(mesh, CutOptions::SCALPEL)?;
+    let pvd = args.output.join("scalpel.pvd");
+    let mut entries: Vec<PvdEntry> = Vec::new();
+    let mut write_step = |k: usize, mesh: &TetMesh| -> CliResult {
+        let name = format!("step-{k:04}.vtu");
+        write_mesh(args.output.join(&name), mesh)?;
+        entries.push(PvdEntry {
+            timestep: k as f64,
+            part: 0,
+            file: PathBuf::from(name),
+        });
+        write_pvd(&pvd, &entries)?;
+        Ok(())
+    };
+    write_step(0, cutter.mesh())?;
+    let start = Instant::now();
+    let mut steps: Vec<Value> = Vec::new();
+    let mut components = 1;
+    for (k, w) in blades.windows(2).enumerate().map(|(k, w)| (k + 1, w)) {
+        let failed =
+            |e: &dyn std::fmt::Display| format!("step {k}: {e}; steps 0-{} written", k - 1);
+        let sweep =
+            scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).map_err(|e| failed(&e))?;
+        let (mut seconds, mut tets_cut) = (0.0, 0);
+        let mut cuts: Vec<Value> = Vec::new();
+        for polygon in &sweep {
+            let r = cutter.cut(polygon).map_err(|e| failed(&e))?;
+            seconds += r.stats.time.cut;
+            tets_cut += r.stats.tets_cut;
+            components = r.stats.components.unwrap_or(components);
+            cuts.push(r.stats.to_json());
+        }
+        let t_validate = Instant::now();
+        let report = cutter.mesh().validate();
+        let validate_seconds = t_validate.elapsed().as_secs_f64();
+        if !report.is_valid() {
+            return Err(format!(
+                "step {k}: the cut left an invalid mesh ({report}); steps 0-{} written to {}, \
+                 nothing saved",
+                k - 1,
+                args.output.display()
+            )
+            .into());
+        }
+        write_step(k, cutter.mesh())?;
+        if args.json {
+            steps.push(json!({
+                "step": k,
+                "polygons": sweep.len(),
+                "tets_cut": tets_cut,
+                "cuts": cuts,
+                "components": components,
+                "seconds": seconds,
+                "seconds_validate": validate_seconds,
+            }));
+        } else {
+            out!(
+                "step {k:<4}  {} polygon(s), {tets_cut} tets cut, {components} component(s), \
+                 {seconds:.4} s (validate {validate_seconds:.3} s)",
+                sweep.len()
+            );
+        }
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    let mesh = cutter.into_mesh();
+    if let Some(save) = &args.save {
+        write_mesh(save, &mesh)?;
+    }
+    if args.json {
+        out!(
+            "{}",
+            json!({
+                "input": args.model.display().to_string(),
+                "steps": steps,
+                "components": components,
+                "tets": mesh.nb_tets(),
+                "valid": true,
+                "pvd": pvd.display().to_string(),
+                "saved": args.save.as_ref().map(|p| p.display().to_string()),
+                "seconds": seconds,
+            })
+        );
+        return Ok(());
+    }
+    out!(
+        "scalpel    {} steps through the mesh, {components} component(s), valid after every \
+         step; {seconds:.3} s",
+        entries.len() - 1
+    );
+    out!("wrote      {} ({} meshes)", pvd.display(), entries.len());
+    if let Some(save) = &args.save {
+        out!("saved      {}", save.display());
+    }
+    Ok(())
 }
