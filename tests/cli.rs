@@ -286,7 +286,11 @@ fn demo_builds_extracts_cuts_and_lists_its_outputs() {
     let mut written: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".vtu") && !n.starts_with("liver-scalpel-"))
+        .filter(|n| {
+            n.ends_with(".vtu")
+                && !n.starts_with("liver-scalpel-")
+                && !n.starts_with("liver-curve-")
+        })
         .collect();
     written.sort();
     let mut listed_sorted: Vec<String> = listed.iter().map(|s| s.to_string()).collect();
@@ -319,6 +323,24 @@ fn demo_builds_extracts_cuts_and_lists_its_outputs() {
         .collect();
     assert_eq!(pieces.first(), Some(&1), "{pieces:?}");
     assert_eq!(pieces.last(), Some(&2), "{pieces:?}");
+    // The curved incision in the middle level: 17 meshes (before, then after each of 16
+    // steps), each valid with the same arrays; the corner comes off at the end.
+    let pvd = std::fs::read_to_string(dir.join("curve.pvd")).unwrap();
+    let series: Vec<&str> = pvd
+        .split("file=\"")
+        .skip(1)
+        .map(|r| r.split('"').next().unwrap())
+        .collect();
+    assert_eq!(series.len(), 17, "{pvd}");
+    assert!(text.contains("curve      a blade turning"), "{text}");
+    let curve: Vec<mtcut::mesh::TetMesh> = series.iter().map(|name| read(name)).collect();
+    assert_eq!(curve[0].nb_tets(), middle.nb_tets());
+    for m in &curve {
+        assert_eq!(names(m), names(&curve[0]));
+        assert!((m.volume() - middle.volume()).abs() <= 1e-12 * middle.volume());
+    }
+    assert_eq!(mtcut::cut::Components::of(&curve[0]).count, 1);
+    assert_eq!(mtcut::cut::Components::of(&curve[16]).count, 2);
     // The model is there, valid, and its finest level is the input.
     let j = info_json(&dir.join("liver.mt"));
     assert_eq!(j["kind"], "mt");

@@ -3,9 +3,10 @@
 //! system packages: check the model, build its Multi-Tessellation (paper §2), extract
 //! three levels of detail, cut the MT straight through (every level and the DAG, paper
 //! §3), extract the finest and the coarsest level of each part, move a scalpel across
-//! the model in steps (each cutting every level with the area the blade swept), and write
-//! it all with ParaView collections listing the outputs (`demo.pvd`; `scalpel.pvd`, the
-//! scalpel's time series).
+//! the model in steps (each cutting every level with the area the blade swept), make a
+//! curved incision in the middle level as a plain mesh (a blade turning as it moves), and
+//! write it all with ParaView collections listing the outputs (`demo.pvd`; `scalpel.pvd`
+//! and `curve.pvd`, the two time series).
 //!
 //! Every step of the collection is an MT extraction, so all carry the same arrays (the
 //! MT's cell and point columns; a cut copies them onto the tets and vertices it makes),
@@ -16,8 +17,8 @@ use crate::CliResult;
 use crate::build::{build_with_bar, progress_bar};
 use crate::info::MeshInfo;
 use flate2::read::GzDecoder;
-use mtcut::cut::{Blade, MtCutter, Scalpel};
-use mtcut::geom::{Aabb, CutPolygon, DVec3};
+use mtcut::cut::{Blade, Components, CutOptions, Cutter, MtCutter, Scalpel};
+use mtcut::geom::{Aabb, CutPolygon, DVec3, Tolerance, scalpel_sweep};
 use mtcut::io::{PvdEntry, parse_tetgen, write_mesh, write_pvd};
 use mtcut::mesh::{ImportReport, TetMesh};
 use mtcut::mt::{BuildOptions, ExtractOptions, Extraction};
@@ -72,6 +73,23 @@ fn demo_blade(bbox: &Aabb, k: usize) -> Blade {
     [
         DVec3::new(x, c.y + 0.013 * d.y, bbox.min.z - 0.1 * d.z),
         DVec3::new(x, c.y - 0.011 * d.y, bbox.max.z + 0.1 * d.z),
+    ]
+}
+
+/// Steps of the demo's curved incision.
+const CURVE_STEPS: usize = 16;
+
+/// The curved incision's blade at step `k`: a segment spanning the model in z, moving
+/// along an arc around a centre off the model's (-x, -y) corner, 8° per step, from
+/// outside the model to outside: it cuts that corner off.
+fn curve_blade(bbox: &Aabb, k: usize) -> Blade {
+    let (c, d) = (bbox.center(), bbox.max - bbox.min);
+    let r = 0.6 * d.x.max(d.y);
+    let a = (98.0 - 8.0 * k as f64).to_radians();
+    let (x, y) = (bbox.min.x - 0.1 * d.x + r * a.cos(), c.y - r + r * a.sin());
+    [
+        DVec3::new(x, y, bbox.min.z - 0.1 * d.z),
+        DVec3::new(x, y, bbox.max.z + 0.1 * d.z),
     ]
 }
 
@@ -153,6 +171,32 @@ pub fn run(args: Args) -> CliResult {
     }
     let scalpel_components = scalpel.mt().nb_components();
 
+    // A curved incision in the middle level as a plain mesh (a simulation's mesh): a blade
+    // turning as it moves, each step continuing the crack (the scalpel's options), the
+    // mesh checked after each step.
+    let mut curve = Cutter::new(middle.mesh.clone(), CutOptions::SCALPEL)?;
+    let mut curve_meshes = vec![curve.mesh().clone()];
+    for k in 1..=CURVE_STEPS {
+        let sweep = scalpel_sweep(
+            curve_blade(&mesh.bbox(), k - 1),
+            curve_blade(&mesh.bbox(), k),
+            Tolerance { relative: 1e-9 },
+        )?;
+        for polygon in &sweep {
+            curve.cut(polygon)?;
+        }
+        let report = curve.mesh().validate();
+        if !report.is_valid() {
+            return Err(format!(
+                "the demo's curved incision left an invalid mesh at step {k}, nothing \
+                 written: {report}"
+            )
+            .into());
+        }
+        curve_meshes.push(curve.mesh().clone());
+    }
+    let curve_parts = Components::of(curve.mesh()).count;
+
     // Everything checked: write.
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let quality = dir.join("liver-quality.json");
@@ -209,6 +253,19 @@ pub fn run(args: Args) -> CliResult {
         .collect::<Result<Vec<PvdEntry>, Box<dyn Error>>>()?;
     let scalpel_pvd = dir.join("scalpel.pvd");
     write_pvd(&scalpel_pvd, &scalpel_entries)?;
+    let curve_entries = curve_meshes
+        .iter()
+        .enumerate()
+        .map(|(k, m)| {
+            Ok(PvdEntry {
+                timestep: k as f64,
+                part: 0,
+                file: write_in(dir, &format!("liver-curve-{k:02}.vtu"), m)?,
+            })
+        })
+        .collect::<Result<Vec<PvdEntry>, Box<dyn Error>>>()?;
+    let curve_pvd = dir.join("curve.pvd");
+    write_pvd(&curve_pvd, &curve_entries)?;
 
     out!(
         "MT         {} fragments, DAG depth {}, {} tets over all levels; built in {:.2} s",
@@ -269,6 +326,13 @@ pub fn run(args: Args) -> CliResult {
          of cutting; {} ({} meshes at the middle budget)",
         scalpel_pvd.display(),
         scalpel_entries.len()
+    );
+    out!(
+        "curve      a blade turning 8° per step through the middle level (a plain mesh) in \
+         {CURVE_STEPS} steps, each continuing the crack: {curve_parts} parts at the end; valid \
+         after every step; {} ({} meshes)",
+        curve_pvd.display(),
+        curve_entries.len()
     );
     out!("time       {:.2} s in all", start.elapsed().as_secs_f64());
     Ok(())
