@@ -98,7 +98,7 @@ pub mod unglue;
 
 pub use classify::{CrackTips, CutScratch, CutSession, TetClass, VertexOrigin};
 pub use components::Components;
-pub use cutter::{CUT_COLUMN, Cutter, cut_mesh, vertex_scales};
+pub use cutter::{CUT_COLUMN, Cutter, RETRY_SNAP, cut_mesh, vertex_scales};
 pub use live::{LiveCut, LiveError, LiveMt, PendingBudget, PendingReport};
 pub use mt_cut::{MtCutStats, MtCutTimes, MtCutter};
 pub use options::{CutError, CutOptions, MIN_FACE_POINT_MARGIN, MIN_SNAP, Scheme};

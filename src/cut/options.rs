@@ -201,9 +201,9 @@ pub enum CutError {
     #[error("the deformed positions fold tet {tet} of the MT, which the cut meets")]
     DeformationFolds { tet: usize },
     #[error(
-        "the cut would replace tet {tet} (configuration {case}) by a flat or inverted tet: \
-         its new points round onto each other; for a scalpel moved in steps use the \
-         scalpel's options (CutOptions::SCALPEL), which continue cracks"
+        "the cut would replace tet {tet} (configuration {case}) by a flat or inverted tet \
+         (its new points round onto each other), even with the snapping tolerance raised \
+         to 0.2"
     )]
     FlatChild { tet: usize, case: &'static str },
 }

@@ -29,6 +29,9 @@ pub struct CutTimes {
 #[derive(Clone, Debug, PartialEq)]
 pub struct CutStats {
     pub scheme: Scheme,
+    /// The snapping tolerance the cut was made with: the options', or larger when a plan
+    /// at it would have made a flat tet (see [`super::Cutter::cut`]).
+    pub snap: f64,
     /// Tets whose vertices were classified (the hierarchy's leaves reached).
     pub tets_tested: usize,
     /// Tets the plane crosses or that touch the cut at a vertex.
@@ -83,6 +86,7 @@ impl CutStats {
             .collect();
         serde_json::json!({
             "scheme": self.scheme.name(),
+            "snap": self.snap,
             "tets_tested": self.tets_tested,
             "tets_candidate": self.tets_candidate,
             "tets_cut": self.tets_cut,
