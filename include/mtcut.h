@@ -835,7 +835,9 @@ mtcut_status mtcut_mesh_copy_tets(const struct mtcut_mesh *mesh,
  * Moves the vertices to `xyz` (`3 x n_vertices` coordinates; `n_vertices` must equal
  * the mesh's vertex count): the deformed configuration a simulation computed. The
  * coordinates must be finite; anything else is refused and the mesh left unchanged.
- * Moving vertices can invert tets: `mtcut_mesh_validate` reports it.
+ * Moving vertices can invert tets: `mtcut_mesh_validate` reports it, and the next cut
+ * refuses such a mesh (`MTCUT_STATUS_INVALID_MESH`, naming the tet; the mesh is kept
+ * as it is, so other positions can be set).
  *
  * # Safety
  * `mesh` must be a live mesh handle used by no other thread during the call; `xyz`

@@ -946,3 +946,36 @@ fn a_model_cut_through_becomes_two_models_and_keeps_its_volume() {
     assert_eq!(tet_count(&old), tet_count(&input));
     assert_eq!(components(&old), 1);
 }
+
+/// Positions a simulation set that invert a tet: the next cut is refused with a message
+/// naming the tet, the mesh kept as set (and cut once the positions are good again).
+#[test]
+fn a_cut_of_a_mesh_moved_into_inverted_tets_is_refused() {
+    let m = cube();
+    let mut s = cut_stats();
+    ok(unsafe { mtcut_mesh_cut(m.0, ACROSS.as_ptr(), 3, &mut s) });
+    let n = unsafe { mtcut_mesh_vertex_count(m.0) };
+    let mut good = vec![0.0; 3 * n];
+    ok(unsafe { mtcut_mesh_copy_vertices(m.0, good.as_mut_ptr(), n) });
+    let tets_before = tet_count(&m);
+    // Vertex 7 (the far corner, in every tet) pulled through the opposite corner.
+    let mut bad = good.clone();
+    bad[21..24].copy_from_slice(&[-1.0, -1.0, -1.0]);
+    ok(unsafe { mtcut_mesh_set_vertices(m.0, bad.as_ptr(), n) });
+    let other: [f64; 9] = [-1., -1., 0.25, 5., -1., 0.25, -1., 5., 0.25];
+    let status = unsafe { mtcut_mesh_cut(m.0, other.as_ptr(), 3, &mut s) };
+    refused(
+        status,
+        MTCUT_STATUS_INVALID_MESH,
+        "mtcut_mesh_cut",
+        "would be inverted or flat",
+    );
+    assert_eq!(tet_count(&m), tets_before, "nothing cut");
+    let mut now = vec![0.0; 3 * n];
+    ok(unsafe { mtcut_mesh_copy_vertices(m.0, now.as_mut_ptr(), n) });
+    assert_eq!(now, bad, "the positions as set");
+    ok(unsafe { mtcut_mesh_set_vertices(m.0, good.as_ptr(), n) });
+    ok(unsafe { mtcut_mesh_cut(m.0, other.as_ptr(), 3, &mut s) });
+    assert!(tet_count(&m) > tets_before);
+    assert_valid(&m, "cut after the positions were restored");
+}

@@ -3,7 +3,7 @@
 
 use super::guard::{Out, deref_mut, run, slice};
 use super::mesh::{flat_len, mtcut_mesh};
-use super::status::{Failure, FfiResult, mtcut_status};
+use super::status::{Failure, FfiResult, MTCUT_STATUS_INVALID_MESH, mtcut_status};
 use super::versioned::{Versioned, VersionedOut, read_optional};
 use crate::cut::{CutError, CutOptions, CutStats, Scheme};
 use crate::geom::{CutPolygon, DVec3, PolygonError, Tolerance, scalpel_sweep};
@@ -211,7 +211,10 @@ impl mtcut_cut_stats {
 }
 
 pub(crate) fn cut_failure(e: CutError) -> Failure {
-    Failure::invalid(e.to_string())
+    match e {
+        CutError::InvertedTet { .. } => Failure::new(MTCUT_STATUS_INVALID_MESH, e.to_string()),
+        e => Failure::invalid(e.to_string()),
+    }
 }
 
 pub(super) fn polygon_failure(e: PolygonError, arg: &str) -> Failure {
@@ -232,8 +235,9 @@ pub(super) unsafe fn points(xyz: *const f64, n: usize, arg: &str) -> FfiResult<V
 }
 
 /// Applies `polygons` in turn to `mesh`. Everything has been checked: the only failures
-/// left are a mesh outgrowing its ids (2^31 vertices or tets) and a cut that would make a
-/// flat tet, which each cut detects before it changes anything.
+/// left are a mesh whose vertices were moved so that a tet is inverted (found before the
+/// first cut), a mesh outgrowing its ids (2^31 vertices or tets) and a cut that would make
+/// a flat tet, which each cut detects before it changes anything.
 fn cut_with(
     mesh: &mut mtcut_mesh,
     polygons: &[CutPolygon],

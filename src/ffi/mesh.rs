@@ -103,6 +103,12 @@ impl mtcut_mesh {
         let mut build = 0.0;
         if let MeshState::Plain { mesh, tips } = &mut self.state {
             options.check()?;
+            // The tables need positively oriented tets, and mtcut_mesh_set_vertices takes
+            // whatever positions a simulation computed: a mesh it inverted is refused here,
+            // naming the tet, instead of failing later as a flat child of some cut tet.
+            if let Some(tet) = first_non_positive(mesh) {
+                return Err(CutError::InvertedTet { tet });
+            }
             let mut c = Cutter::new(std::mem::take(mesh), options)?;
             c.set_crack_tips(std::mem::take(tips));
             build = c.build_time().as_secs_f64();
@@ -116,6 +122,16 @@ impl mtcut_mesh {
             MeshState::Plain { .. } => unreachable!("a cutter was just made"),
         }
     }
+}
+
+/// The first tet that is not positively oriented (exactly), if any.
+fn first_non_positive(mesh: &TetMesh) -> Option<usize> {
+    use rayon::prelude::*;
+    let p = mesh.positions();
+    mesh.tets().par_iter().position_first(|t| {
+        let [a, b, c, d] = t.map(|v| p[v.idx()]);
+        crate::geom::orient3d(a, b, c, d) != crate::geom::Sign::Positive
+    })
 }
 
 /// The mesh behind a handle argument.
@@ -336,7 +352,9 @@ pub unsafe extern "C" fn mtcut_mesh_copy_tets(
 /// Moves the vertices to `xyz` (`3 x n_vertices` coordinates; `n_vertices` must equal
 /// the mesh's vertex count): the deformed configuration a simulation computed. The
 /// coordinates must be finite; anything else is refused and the mesh left unchanged.
-/// Moving vertices can invert tets: `mtcut_mesh_validate` reports it.
+/// Moving vertices can invert tets: `mtcut_mesh_validate` reports it, and the next cut
+/// refuses such a mesh (`MTCUT_STATUS_INVALID_MESH`, naming the tet; the mesh is kept
+/// as it is, so other positions can be set).
 ///
 /// # Safety
 /// `mesh` must be a live mesh handle used by no other thread during the call; `xyz`
