@@ -51,8 +51,9 @@ enum Command {
     /// Restrict an .mt model to a box or a sphere (everything outside omitted), as a model
     /// of its own.
     Roi(roi::Args),
-    /// Move a scalpel through an .mt model in time steps (a blade position per step, from
-    /// a JSON file), writing the current mesh after each step as a ParaView time series.
+    /// Move a scalpel through an .mt model, or through a mesh, in time steps (a blade
+    /// position per step, from a JSON file), writing the current mesh after each step as a
+    /// ParaView time series.
     Scalpel(scalpel::Args),
     /// Run the main job on the embedded liver model and write the results to a folder.
     Demo(demo::Args),

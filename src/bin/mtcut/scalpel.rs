@@ -48,7 +48,8 @@ pub struct Resolution {
 pub struct Args {
     /// The model (.mt), or a mesh (.vtu, .node/.ele, .mesh) to cut itself.
     model: PathBuf,
-    /// The blade's positions over time (JSON, see `mtcut scalpel --help`).
+    /// The blade's positions over time: a JSON list of at least two positions, one per
+    /// time step, each the blade's two ends: [[[x,y,z],[x,y,z]], [[x,y,z],[x,y,z]], ...].
     #[arg(long, value_name = "PATH.json")]
     path: PathBuf,
     /// Folder for the time series (created if missing).
