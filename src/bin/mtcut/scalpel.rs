@@ -142,22 +142,12 @@ pub fn run(args: Args) -> CliResult {
         return run_time_critical(&args, mt, &blades, &options);
     }
     let mut scalpel = Scalpel::new(mt, blades[0])?;
-    let mut entries: Vec<PvdEntry> = Vec::new();
+    let mut series = Series::new(&args.output);
     let mut steps: Vec<Value> = Vec::new();
-    let pvd = args.output.join("scalpel.pvd");
-    let write_step = |k: usize, mt: &Mt, entries: &mut Vec<PvdEntry>| -> CliResult {
-        let e = mt.extract(&options)?;
-        let name = format!("step-{k:04}.vtu");
-        write_mesh(args.output.join(&name), &e.mesh)?;
-        entries.push(PvdEntry {
-            timestep: k as f64,
-            part: 0,
-            file: PathBuf::from(name),
-        });
-        write_pvd(&pvd, entries)?;
-        Ok(())
+    let write_step = |k: usize, mt: &Mt, series: &mut Series| -> CliResult {
+        series.write(k, &mt.extract(&options)?.mesh)
     };
-    write_step(0, scalpel.mt(), &mut entries)?;
+    write_step(0, scalpel.mt(), &mut series)?;
     let start = Instant::now();
     for (k, &to) in blades.iter().enumerate().skip(1) {
         let step = scalpel
@@ -167,15 +157,9 @@ pub fn run(args: Args) -> CliResult {
         let report = scalpel.mt().validate();
         let validate_seconds = t_validate.elapsed().as_secs_f64();
         if !report.is_valid() {
-            return Err(format!(
-                "step {k}: the cut left an invalid model ({report}); steps 0-{} written to {}, \
-                 nothing saved",
-                k - 1,
-                args.output.display()
-            )
-            .into());
+            return Err(invalid_step(k, "model", &report, &args.output));
         }
-        write_step(k, scalpel.mt(), &mut entries)?;
+        write_step(k, scalpel.mt(), &mut series)?;
         let components = scalpel.mt().nb_components();
         if args.json {
             steps.push(json!({
@@ -199,15 +183,15 @@ pub fn run(args: Args) -> CliResult {
         }
     }
     let seconds = start.elapsed().as_secs_f64();
-    finish(&args, scalpel.into_mt(), steps, entries.len(), seconds)
+    finish(&args, scalpel.into_mt(), steps, &series, seconds)
 }
 
 /// After the last step: saves the model if asked, prints the run's summary.
-fn finish(args: &Args, mt: Mt, steps: Vec<Value>, meshes: usize, seconds: f64) -> CliResult {
+fn finish(args: &Args, mt: Mt, steps: Vec<Value>, series: &Series, seconds: f64) -> CliResult {
     if let Some(save) = &args.save {
         mt.save(save)?;
     }
-    let pvd = args.output.join("scalpel.pvd");
+    let (pvd, meshes) = (&series.pvd, series.len());
     if args.json {
         out!(
             "{}",
@@ -246,20 +230,8 @@ fn finish(args: &Args, mt: Mt, steps: Vec<Value>, meshes: usize, seconds: f64) -
 /// written then), then the queued MT cut ([`LiveMt::process_pending`]), then validates both.
 fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOptions) -> CliResult {
     let mut live = LiveMt::new(mt, options, Scalpel::OPTIONS)?;
-    let pvd = args.output.join("scalpel.pvd");
-    let mut entries: Vec<PvdEntry> = Vec::new();
-    let mut write_step = |k: usize, live: &LiveMt| -> CliResult {
-        let name = format!("step-{k:04}.vtu");
-        write_mesh(args.output.join(&name), live.mesh())?;
-        entries.push(PvdEntry {
-            timestep: k as f64,
-            part: 0,
-            file: PathBuf::from(name),
-        });
-        write_pvd(&pvd, &entries)?;
-        Ok(())
-    };
-    write_step(0, &live)?;
+    let mut series = Series::new(&args.output);
+    series.write(0, live.mesh())?;
     let start = Instant::now();
     let mut steps: Vec<Value> = Vec::new();
     for (k, w) in blades.windows(2).enumerate().map(|(k, w)| (k + 1, w)) {
@@ -273,7 +245,7 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
             frontier_s += c.seconds;
             tets_cut += c.stats.tets_cut;
         }
-        write_step(k, &live)?;
+        series.write(k, live.mesh())?;
         let r = live
             .process_pending(PendingBudget::All)
             .map_err(|e| failed(&e))?;
@@ -286,13 +258,7 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
             } else {
                 model.to_string()
             };
-            return Err(format!(
-                "step {k}: the cut left an invalid model ({what}); steps 0-{} written to {}, \
-                 nothing saved",
-                k - 1,
-                args.output.display()
-            )
-            .into());
+            return Err(invalid_step(k, "model", &what, &args.output));
         }
         if args.json {
             steps.push(json!({
@@ -325,7 +291,7 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         }
     }
     let seconds = start.elapsed().as_secs_f64();
-    finish(args, live.into_mt()?, steps, entries.len(), seconds)
+    finish(args, live.into_mt()?, steps, &series, seconds)
 }
 
 /// A scalpel through a mesh (not a model): each step cuts the mesh with the area the blade
@@ -353,20 +319,8 @@ fn run_mesh(args: &Args) -> CliResult {
     let (mesh, _) = read_mesh(&args.model)?;
     std::fs::create_dir_all(&args.output).map_err(|e| format!("{}: {e}", args.output.display()))?;
     let mut cutter = Cutter::new(mesh, CutOptions::SCALPEL)?;
-    let pvd = args.output.join("scalpel.pvd");
-    let mut entries: Vec<PvdEntry> = Vec::new();
-    let mut write_step = |k: usize, mesh: &TetMesh| -> CliResult {
-        let name = format!("step-{k:04}.vtu");
-        write_mesh(args.output.join(&name), mesh)?;
-        entries.push(PvdEntry {
-            timestep: k as f64,
-            part: 0,
-            file: PathBuf::from(name),
-        });
-        write_pvd(&pvd, &entries)?;
-        Ok(())
-    };
-    write_step(0, cutter.mesh())?;
+    let mut series = Series::new(&args.output);
+    series.write(0, cutter.mesh())?;
     let start = Instant::now();
     let mut steps: Vec<Value> = Vec::new();
     let mut components = 1;
@@ -388,15 +342,9 @@ fn run_mesh(args: &Args) -> CliResult {
         let report = cutter.mesh().validate();
         let validate_seconds = t_validate.elapsed().as_secs_f64();
         if !report.is_valid() {
-            return Err(format!(
-                "step {k}: the cut left an invalid mesh ({report}); steps 0-{} written to {}, \
-                 nothing saved",
-                k - 1,
-                args.output.display()
-            )
-            .into());
+            return Err(invalid_step(k, "mesh", &report, &args.output));
         }
-        write_step(k, cutter.mesh())?;
+        series.write(k, cutter.mesh())?;
         if args.json {
             steps.push(json!({
                 "step": k,
@@ -429,7 +377,7 @@ fn run_mesh(args: &Args) -> CliResult {
                 "components": components,
                 "tets": mesh.nb_tets(),
                 "valid": true,
-                "pvd": pvd.display().to_string(),
+                "pvd": series.pvd.display().to_string(),
                 "saved": args.save.as_ref().map(|p| p.display().to_string()),
                 "seconds": seconds,
             })
@@ -439,11 +387,67 @@ fn run_mesh(args: &Args) -> CliResult {
     out!(
         "scalpel    {} steps through the mesh, {components} component(s), valid after every \
          step; {seconds:.3} s",
-        entries.len() - 1
+        series.len() - 1
     );
-    out!("wrote      {} ({} meshes)", pvd.display(), entries.len());
+    out!(
+        "wrote      {} ({} meshes)",
+        series.pvd.display(),
+        series.len()
+    );
     if let Some(save) = &args.save {
         out!("saved      {}", save.display());
     }
     Ok(())
+}
+
+/// The time series of a run: `DIR/step-NNNN.vtu`, listed in `DIR/scalpel.pvd`, the list
+/// rewritten after each step (so the steps before a failure stay listed).
+struct Series {
+    dir: PathBuf,
+    pvd: PathBuf,
+    entries: Vec<PvdEntry>,
+}
+
+impl Series {
+    fn new(dir: &Path) -> Series {
+        Series {
+            dir: dir.to_path_buf(),
+            pvd: dir.join("scalpel.pvd"),
+            entries: Vec::new(),
+        }
+    }
+
+    /// Writes step `k`'s mesh and lists it.
+    fn write(&mut self, k: usize, mesh: &TetMesh) -> CliResult {
+        let name = format!("step-{k:04}.vtu");
+        write_mesh(self.dir.join(&name), mesh)?;
+        self.entries.push(PvdEntry {
+            timestep: k as f64,
+            part: 0,
+            file: PathBuf::from(name),
+        });
+        write_pvd(&self.pvd, &self.entries)?;
+        Ok(())
+    }
+
+    /// Meshes written.
+    fn len(&self) -> usize {
+        self.entries.len()
+    }
+}
+
+/// The error of a step that left an invalid `what` (model or mesh).
+fn invalid_step(
+    k: usize,
+    what: &str,
+    report: &dyn std::fmt::Display,
+    output: &Path,
+) -> Box<dyn std::error::Error> {
+    format!(
+        "step {k}: the cut left an invalid {what} ({report}); steps 0-{} written to {}, \
+         nothing saved",
+        k - 1,
+        output.display()
+    )
+    .into()
 }
