@@ -10,14 +10,13 @@
 //! shared meshes; and seeded random paths (turning, leaning, through or stopping inside,
 //! steps of 0.2% to 5% of the diagonal) with no cut refused.
 
+mod blades;
 mod cut_common;
 
+use blades::{shallow_path, vertical};
 use cut_common::{MESHES, mesh};
-use mtcut::cut::{Components, CutOptions, Cutter, MIN_FACE_POINT_MARGIN};
+use mtcut::cut::{Blade, Components, CutOptions, Cutter, MIN_FACE_POINT_MARGIN};
 use mtcut::geom::{Aabb, DVec3, Tolerance, scalpel_sweep};
-
-/// A blade position: the segment between two points.
-type Blade = [DVec3; 2];
 
 struct Run {
     name: &'static str,
@@ -75,15 +74,6 @@ impl Run {
     fn parts(&self) -> usize {
         Components::of(self.cutter.mesh()).count
     }
-}
-
-/// A blade spanning the body in z (with margin) at (x, y).
-fn vertical(b: &Aabb, x: f64, y: f64) -> Blade {
-    let d = b.max - b.min;
-    [
-        DVec3::new(x, y, b.min.z - 0.1 * d.z),
-        DVec3::new(x, y, b.max.z + 0.1 * d.z),
-    ]
 }
 
 /// A slightly tilted blade (its plane leans in y) crossing the body in x in `steps` steps.
@@ -173,22 +163,6 @@ fn a_tilting_blade_across_the_body_leaves_two_parts() {
         run.sweep("tilting", &path);
         assert_eq!(run.parts(), 2, "{name}");
     }
-}
-
-/// A blade cutting from above the body down to mid-depth, moved along `from`→`to` in steps.
-fn shallow_path(b: &Aabb, from: (f64, f64), to: (f64, f64), steps: usize) -> Vec<Blade> {
-    let d = b.max - b.min;
-    let depth = b.min.z + 0.45 * d.z;
-    (0..=steps)
-        .map(|k| {
-            let t = k as f64 / steps as f64;
-            let (x, y) = (from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1));
-            [
-                DVec3::new(x, y, b.max.z + 0.1 * d.z),
-                DVec3::new(x, y, depth),
-            ]
-        })
-        .collect()
 }
 
 /// The parts of `name` cut at once by the rectangles a shallow blade sweeps along each

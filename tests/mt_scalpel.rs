@@ -7,15 +7,14 @@
 //! the finest and coarsest meshes keep their volume, and extractions at 10 thresholds (and
 //! focus regions at some steps) are valid meshes that no polygon applied so far crosses.
 
+mod blades;
 mod mt_common;
 mod mtcut_common;
 
-use mtcut::cut::MtCutter;
+use blades::{shallow_path, vertical};
+use mtcut::cut::{Blade, MtCutter};
 use mtcut::geom::{Aabb, CutPolygon, DVec3, Tolerance, scalpel_sweep};
 use mtcut_common::*;
-
-/// A blade position: the segment between two points.
-type Blade = [DVec3; 2];
 
 struct Run {
     name: &'static str,
@@ -67,15 +66,6 @@ impl Run {
     fn components(&self) -> usize {
         self.cutter.mt().nb_components()
     }
-}
-
-/// A blade spanning the body in z (with margin) at (x, y).
-fn vertical(b: &Aabb, x: f64, y: f64) -> Blade {
-    let d = b.max - b.min;
-    [
-        DVec3::new(x, y, b.min.z - 0.1 * d.z),
-        DVec3::new(x, y, b.max.z + 0.1 * d.z),
-    ]
 }
 
 /// An incision that turns by 8° per step (each sweep planar, consecutive ones at an angle),
@@ -132,22 +122,6 @@ fn a_tilting_blade_across_the_body_separates_it() {
         run.sweep("tilting", &path);
         assert!(run.components() >= 2, "{name}: the blade did not separate");
     }
-}
-
-/// A blade cutting from above the body down to mid-depth, moved along `from`→`to` in steps.
-fn shallow_path(b: &Aabb, from: (f64, f64), to: (f64, f64), steps: usize) -> Vec<Blade> {
-    let d = b.max - b.min;
-    let depth = b.min.z + 0.45 * d.z;
-    (0..=steps)
-        .map(|k| {
-            let t = k as f64 / steps as f64;
-            let (x, y) = (from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1));
-            [
-                DVec3::new(x, y, b.max.z + 0.1 * d.z),
-                DVec3::new(x, y, depth),
-            ]
-        })
-        .collect()
 }
 
 /// A shallow incision along x, then a second one starting outside the body and ending on

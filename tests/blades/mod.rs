@@ -1,0 +1,31 @@
+//! Blade positions shared by the scalpel tests of plain meshes (tests/cut_scalpel.rs) and of
+//! the MT (tests/mt_scalpel.rs), so both move the same blades through the same bodies.
+#![allow(dead_code)] // each test binary uses its own subset
+
+use mtcut::cut::Blade;
+use mtcut::geom::{Aabb, DVec3};
+
+/// A blade spanning the body in z (with margin) at (x, y).
+pub fn vertical(b: &Aabb, x: f64, y: f64) -> Blade {
+    let d = b.max - b.min;
+    [
+        DVec3::new(x, y, b.min.z - 0.1 * d.z),
+        DVec3::new(x, y, b.max.z + 0.1 * d.z),
+    ]
+}
+
+/// A blade cutting from above the body down to mid-depth, moved along `from`→`to` in steps.
+pub fn shallow_path(b: &Aabb, from: (f64, f64), to: (f64, f64), steps: usize) -> Vec<Blade> {
+    let d = b.max - b.min;
+    let depth = b.min.z + 0.45 * d.z;
+    (0..=steps)
+        .map(|k| {
+            let t = k as f64 / steps as f64;
+            let (x, y) = (from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1));
+            [
+                DVec3::new(x, y, b.max.z + 0.1 * d.z),
+                DVec3::new(x, y, depth),
+            ]
+        })
+        .collect()
+}
