@@ -84,6 +84,13 @@
 //!    writes only their links to it, so any order gives the same MT
 //!    ([`MtCutter::cut_in_order`] lets tests check this).
 //!
+//!    A root is the exception that keeps a small cut of a large MT small: its ceiling is
+//!    a whole finest mesh. When it was one part and the tets the cut made of its own form
+//!    one piece (a crack ending inside the body: the lips meet at its tips, which are
+//!    never duplicated), it is still one part, and takes part like a fragment not
+//!    involved, its ceiling not read. A cut separating the finest mesh splits it like
+//!    the others.
+//!
 //!    Why by body and not by local part (the paper splits a fragment wherever C separates
 //!    it): a crack ending inside the body separates the regions of the fragments it
 //!    crosses locally, yet both lips belong to one body. Split there, the two lips would
@@ -112,9 +119,11 @@
 //! * A vertex exactly on the cut whose tets in the finest mesh do not form one group per
 //!   side (the engine's *pinched* vertices and boundary saddles) is left unsnapped on every
 //!   level, as the engine does on a plain mesh; coarser levels are not analysed separately.
-//! * Closing the MT sorts the pool back into arcs, and grouping parts by body joins the
-//!   fragments through every tet of the pool: that part of the DAG update costs time in
-//!   proportion to the pool, not to the cut (measured in `benches/table2.rs`).
+//! * Opening the MT (a creator and a destroyer per pool tet) and closing it (the pool
+//!   merged back into arcs, levels and arc lists derived again), and grouping parts by
+//!   body (a pass over the DAG's arcs), cost time in proportion to the pool and the DAG,
+//!   not to the cut; so does a cut that separates a finest mesh (its root's ceiling is
+//!   read). Measured in `benches/table2.rs`.
 //! * Every level is cut, so the pool grows with every cut by several tets per tet cut on
 //!   every level (the tests' 50 random cuts through fandisk take its pool from 0.15 M to
 //!   5.9 M tets).
@@ -832,6 +841,25 @@ impl MtCutter {
 
         // Commit: from here on the MT changes.
         let dag = Reach::new(mt);
+        // The floor and ceiling of every fragment the DAG update may involve (creators and
+        // destroyers of the candidates and ghosts, and the cracked fragments), as ranges
+        // of the pool before the cut: a tet replaced in place keeps its index and its arc,
+        // and appended tets are added to them later. What step 3 reads instead of a pass
+        // over the pool.
+        let mut spans: HashMap<u32, Spans, FxBuild> = HashMap::default();
+        {
+            let mut note = |f: FragmentId| {
+                spans.entry(f.0).or_insert_with(|| Spans::of(mt, f));
+            };
+            for t in cand.iter().copied().chain(ghosts.iter().map(|&g| TetId(g))) {
+                note(mt.tet_creator(t));
+                note(mt.tet_destroyer(t));
+            }
+            for f in (0..self.cracked.len()).filter(|&f| self.cracked[f]) {
+                note(FragmentId::from_usize(f));
+            }
+        }
+        let roots_before = mt.roots().to_vec();
         let mut open: OpenMt = self.mt.take().expect("MtCutter holds its MT").open();
         let new_positions = origin_positions(&open.positions, &origins);
         open.positions.extend(new_positions);
@@ -959,6 +987,47 @@ impl MtCutter {
             involved[open.creator[t as usize].idx()] = true;
             involved[open.destroyer[t as usize].idx()] = true;
         }
+        // A root (its ceiling is a whole finest mesh) that was one part stays one part
+        // when what the cut made of its tets is one piece (joined through shared
+        // vertices: the lips of a crack through a tip, never duplicated): every other tet
+        // of it shares a vertex with that piece or with tets that do, as before the cut
+        // (a vertex the cut duplicated lies on the cut, so every tet holding it is a
+        // changed one). It then takes part like a fragment not involved, without a pass
+        // over its ceiling; otherwise (a cut separating the finest mesh, say) it is split
+        // like the others.
+        let mut whole_roots = 0;
+        let mut pieces = Pieces {
+            first: vec![0; open.positions.len()],
+            stamp: vec![0; open.positions.len()],
+            epoch: 0,
+            parent: Vec::new(),
+        };
+        for &r in &roots_before {
+            if !involved[r.idx()] || self.cracked.get(r.idx()).copied().unwrap_or(false) {
+                continue;
+            }
+            let made: Vec<u32> = touched
+                .iter()
+                .chain(&ghost_touched)
+                .copied()
+                .filter(|&t| open.creator[t as usize] == r)
+                .collect();
+            if pieces.one_piece(&open.tets, made.iter()) {
+                involved[r.idx()] = false;
+                whole_roots += 1;
+                debug_assert!(
+                    {
+                        let ceiling: Vec<u32> = (0..open.tets.len() as u32)
+                            .filter(|&t| open.creator[t as usize] == r)
+                            .collect();
+                        split_fragment(&open.tets, &open.positions, &[], &ceiling)
+                            .iter()
+                            .all(|&p| p == 0)
+                    },
+                    "root {r} taken whole, but its ceiling is in several parts"
+                );
+            }
+        }
         let mut order: Vec<FragmentId> = (0..nf)
             .filter(|&f| involved[f])
             .map(FragmentId::from_usize)
@@ -966,7 +1035,7 @@ impl MtCutter {
         if let Some(key) = key {
             order.sort_by_key(|&f| (key(f), f));
         }
-        stats.fragments_involved = order.len();
+        stats.fragments_involved = order.len() + whole_roots;
         let mut slot = vec![u32::MAX; nf];
         for (i, f) in order.iter().enumerate() {
             slot[f.idx()] = i as u32;
@@ -974,34 +1043,35 @@ impl MtCutter {
         // Bodies: the fragments, and the parts below, joined through the tets between them
         // (the arcs). Between fragments not involved, the arcs before the cut still hold.
         let mut body: Vec<u32> = (0..nf as u32).collect();
-        for (f, succ) in dag.succ.iter().enumerate() {
+        for f in 0..dag.level.len() {
             if !involved[f] {
-                for &g in succ.iter().filter(|&&g| !involved[g as usize]) {
+                for g in dag.succ(f).filter(|&g| !involved[g as usize]) {
                     union(&mut body, f as u32, g);
                 }
             }
         }
-        // Floor and ceiling of each involved fragment, in pool order.
-        let mut floor: Vec<Vec<u32>> = vec![Vec::new(); order.len()];
-        let mut ceiling: Vec<Vec<u32>> = vec![Vec::new(); order.len()];
-        // Each tet in them, with its indices in its creator's ceiling and its destroyer's
-        // floor (`u32::MAX`: that fragment is not involved).
-        let mut links: Vec<[u32; 3]> = Vec::new();
-        for t in 0..open.tets.len() {
+        // Floor and ceiling of each involved fragment, in pool order: its ranges before
+        // the cut, then the tets appended.
+        let mut floor: Vec<Vec<u32>> = Vec::with_capacity(order.len());
+        let mut ceiling: Vec<Vec<u32>> = Vec::with_capacity(order.len());
+        for f in &order {
+            let s = &spans[&f.0];
+            ceiling.push(s.ceiling.clone().map(|t| t as u32).collect());
+            floor.push(
+                s.floor
+                    .iter()
+                    .flat_map(|r| r.clone().map(|t| t as u32))
+                    .collect(),
+            );
+        }
+        for t in n_tets..open.tets.len() {
             let (c, d) = (slot[open.creator[t].idx()], slot[open.destroyer[t].idx()]);
-            if c == u32::MAX && d == u32::MAX {
-                continue;
-            }
-            let mut link = [t as u32, u32::MAX, u32::MAX];
             if c != u32::MAX {
-                link[1] = ceiling[c as usize].len() as u32;
                 ceiling[c as usize].push(t as u32);
             }
             if d != u32::MAX {
-                link[2] = floor[d as usize].len() as u32;
                 floor[d as usize].push(t as u32);
             }
-            links.push(link);
         }
         // The local parts of each involved fragment, each with a provisional id after the
         // fragments': `first_part[i] + p` for part `p` of fragment `order[i]`.
@@ -1019,26 +1089,33 @@ impl MtCutter {
         // docs): only parts in different bodies become different fragments.
         body.extend(nf as u32..next);
         // Each tet joins the part above it (in its creator's ceiling) to the part below it
-        // (in its destroyer's floor); a fragment not involved is its own part.
-        for &[t, in_ceiling, in_floor] in &links {
-            let (c, d) = (open.creator[t as usize], open.destroyer[t as usize]);
-            let above = match in_ceiling {
-                u32::MAX => c.0,
-                j => {
-                    let i = slot[c.idx()] as usize;
-                    first_part[i] + parts[i][floor[i].len() + j as usize]
+        // (in its destroyer's floor); a fragment not involved is its own part. Floors
+        // first: the part below each tet whose creator is involved too, for the ceilings.
+        let mut below_of: HashMap<u32, u32, FxBuild> = HashMap::default();
+        for (i, list) in floor.iter().enumerate() {
+            for (j, &t) in list.iter().enumerate() {
+                let below = first_part[i] + parts[i][j];
+                let c = open.creator[t as usize];
+                if slot[c.idx()] == u32::MAX {
+                    union(&mut body, c.0, below);
+                } else {
+                    below_of.insert(t, below);
                 }
-            };
-            let below = match in_floor {
-                u32::MAX => d.0,
-                j => {
-                    let i = slot[d.idx()] as usize;
-                    first_part[i] + parts[i][j as usize]
-                }
-            };
-            union(&mut body, above, below);
+            }
+        }
+        for (i, list) in ceiling.iter().enumerate() {
+            let nfl = floor[i].len();
+            for (j, &t) in list.iter().enumerate() {
+                let above = first_part[i] + parts[i][nfl + j];
+                let below = match below_of.get(&t) {
+                    Some(&b) => b,
+                    None => open.destroyer[t as usize].0,
+                };
+                union(&mut body, above, below);
+            }
         }
         self.cracked.resize(nf, false);
+        let mut split: Vec<FragmentId> = Vec::new();
         for (i, &f) in order.iter().enumerate() {
             let n_parts = first_part[i + 1] - first_part[i];
             self.cracked[f.idx()] = n_parts > 1;
@@ -1071,6 +1148,7 @@ impl MtCutter {
             self.cracked[f.idx()] = sizes[0] > 1;
             self.cracked.extend(sizes[1..].iter().map(|&n| n > 1));
             stats.fragments_split += 1;
+            split.push(f);
             let first_new_fragment = open.kind.len() as u32;
             for _ in 1..n_groups {
                 let n = open.kind.len();
@@ -1102,9 +1180,10 @@ impl MtCutter {
                 }
             }
         }
-        // Every tet the cut changed is in the floor or ceiling of an involved fragment
-        // (or of one added above): the other boxes stay.
-        open.changed_fragments = Some(order.iter().map(|f| f.0).collect());
+        // A tet the tables replaced is tiled by its children (a ghost's triangle by its
+        // sub-triangles; crack ghosts lie inside): only a fragment that gave tets to the
+        // fragments split off it has a new box (and those, added, get theirs).
+        open.changed_fragments = Some(split.iter().map(|f| f.0).collect());
         let mt = open
             .close()
             .unwrap_or_else(|e| panic!("the MT cut left an inconsistent store: {e}"));
@@ -1153,8 +1232,31 @@ fn cracked_fragments(mt: &Mt) -> Vec<bool> {
         .collect()
 }
 
-/// Scratch of [`cracked_fragments`]: per vertex, the first tet of the current list holding
-/// it (valid where `stamp` is the current epoch).
+/// A fragment's ceiling (contiguous: arcs are sorted by creator) and floor (one range per
+/// in-arc, in pool order) as ranges of the pool.
+struct Spans {
+    ceiling: std::ops::Range<usize>,
+    floor: Vec<std::ops::Range<usize>>,
+}
+
+impl Spans {
+    fn of(mt: &Mt, f: FragmentId) -> Spans {
+        let mut out = mt.out_arcs(f).into_iter();
+        let ceiling = match (out.next(), out.last()) {
+            (None, _) => 0..0,
+            (Some(a), last) => {
+                mt.arc_tets(a as usize).start..mt.arc_tets(last.unwrap_or(a) as usize).end
+            }
+        };
+        let mut floor: Vec<std::ops::Range<usize>> =
+            mt.in_arcs(f).map(|a| mt.arc_tets(a as usize)).collect();
+        floor.sort_unstable_by_key(|r| r.start);
+        Spans { ceiling, floor }
+    }
+}
+
+/// Scratch of [`cracked_fragments`] and of the whole-root test: per vertex, the first tet
+/// of the current list holding it (valid where `stamp` is the current epoch).
 struct Pieces {
     first: Vec<u32>,
     stamp: Vec<u32>,
@@ -1200,24 +1302,26 @@ impl Pieces {
 /// depth-first search from `a` pruned by levels (a successor has a larger level).
 struct Reach {
     level: Vec<u32>,
-    succ: Vec<Vec<u32>>,
+    /// The successors of `f`: `dest[out_start[f]..out_start[f + 1]]` (each once: an MT
+    /// has one arc per pair of fragments).
+    out_start: Vec<u32>,
+    dest: Vec<FragmentId>,
 }
 
 impl Reach {
     fn new(mt: &Mt) -> Reach {
-        let nf = mt.nb_fragments();
-        let mut succ = vec![Vec::new(); nf];
-        for (_, c, d) in mt.arcs() {
-            succ[c.idx()].push(d.0);
+        let (out_start, dest, level) = mt.dag_tables();
+        Reach {
+            level,
+            out_start,
+            dest,
         }
-        for s in &mut succ {
-            s.sort_unstable();
-            s.dedup();
-        }
-        let level = (0..nf)
-            .map(|f| mt.fragment_level(FragmentId::from_usize(f)))
-            .collect();
-        Reach { level, succ }
+    }
+
+    fn succ(&self, f: usize) -> impl Iterator<Item = u32> + '_ {
+        self.dest[self.out_start[f] as usize..self.out_start[f + 1] as usize]
+            .iter()
+            .map(|g| g.0)
     }
 
     fn reaches(&self, a: FragmentId, b: FragmentId) -> bool {
@@ -1228,7 +1332,7 @@ impl Reach {
         let mut seen: HashSet<u32, FxBuild> = HashSet::default();
         let mut stack = vec![a.0];
         while let Some(f) = stack.pop() {
-            for &g in &self.succ[f as usize] {
+            for g in self.succ(f as usize) {
                 if g == b.0 {
                     return true;
                 }

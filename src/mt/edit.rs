@@ -8,10 +8,10 @@
 //! a load, so an edit cannot leave them inconsistent. Two exceptions keep the cost of a
 //! small edit of a large MT near the size of the edit: the sort is a merge in place when
 //! little moved (its result does not depend on the editor's hint), and an editor that
-//! lists the fragments it changed ([`OpenMt::changed_fragments`]) keeps the others' boxes
-//! (the cut does; `Mt::validate` checks every box). Appended vertices and tets need
-//! attribute rows; the editor pushes them (interpolated for vertices, inherited for tets,
-//! zeros for ghosts).
+//! lists the fragments whose box it may have changed ([`OpenMt::changed_fragments`]) keeps
+//! the others' boxes (the cut does; `Mt::validate` checks every box). Appended vertices and
+//! tets need attribute rows; the editor pushes them (interpolated for vertices, inherited
+//! for tets, zeros for ghosts).
 //!
 //! This module knows nothing of cuts: the cut layer (`crate::cut::mt`) decides what to
 //! change.
@@ -39,11 +39,13 @@ pub struct OpenMt {
     /// Tets below `opened_sorted` whose creator or destroyer an edit changed. A hint for
     /// [`close`](Self::close) only: the order it produces does not depend on it.
     pub relabelled: Vec<u32>,
-    /// Fragments whose floor or ceiling an edit changed, when the editor keeps count
-    /// (`None`: unknown, every fragment box is derived again when closing). Fragments
-    /// added, and the fragments of appended tets, count without being listed; any other
-    /// fragment keeps the box it had when opened, so an editor that lists fragments must
-    /// list every one it changed (`Mt::validate` compares every box with its tets).
+    /// Fragments whose box an edit may have changed, when the editor keeps count (`None`:
+    /// unknown, every fragment box is derived again when closing). Fragments added count
+    /// without being listed; any other fragment keeps the box it had when opened, so an
+    /// editor that lists fragments must list every one whose floor and ceiling no longer
+    /// span the same box (`Mt::validate` compares every box with its tets). Replacing a tet
+    /// by tets that tile it, as a cut does, keeps the box: each corner of the tet is a
+    /// corner of one of them.
     pub changed_fragments: Option<Vec<u32>>,
     /// The fragment boxes when opened.
     boxes: Option<(BoxFrame, Vec<QuantBox>)>,
@@ -53,12 +55,17 @@ impl Mt {
     /// The open form of this MT (per-tet creator and destroyer).
     pub fn open(self) -> OpenMt {
         let nt = self.nb_tets();
-        let mut creator = Vec::with_capacity(nt);
-        let mut destroyer = Vec::with_capacity(nt);
-        for (a, c, d) in self.arcs() {
-            let n = self.arc_tets(a).len();
-            creator.extend(std::iter::repeat_n(c, n));
-            destroyer.extend(std::iter::repeat_n(d, n));
+        // Filled run by run (a fragment's ceiling is contiguous: arcs are sorted by
+        // creator), at the speed of a memset.
+        let mut creator = vec![FragmentId(0); nt];
+        let mut destroyer = vec![FragmentId(0); nt];
+        let start = |a: u32| self.arc_start[a as usize] as usize;
+        for f in 0..self.nb_fragments() {
+            let (a, b) = (self.out_start[f], self.out_start[f + 1]);
+            creator[start(a)..start(b)].fill(FragmentId::from_usize(f));
+            for a in a..b {
+                destroyer[start(a)..start(a + 1)].fill(self.arc_destroyer[a as usize]);
+            }
         }
         OpenMt {
             positions: self.positions,
@@ -246,9 +253,7 @@ impl OpenMt {
         let known_boxes = match (this.boxes.take(), this.changed_fragments.take()) {
             (Some((frame, boxes)), Some(listed)) => {
                 let mut changed = vec![false; boxes.len()];
-                let appended = this.opened_sorted.min(nt)..nt;
-                let of_appended = appended.flat_map(|t| [this.creator[t], this.destroyer[t]]);
-                for f in listed.into_iter().chain(of_appended.map(|f| f.0)) {
+                for f in listed {
                     if let Some(c) = changed.get_mut(f as usize) {
                         *c = true;
                     }
@@ -294,14 +299,13 @@ impl OpenMt {
         let mut arc_start = Vec::new();
         let mut arc_creator = Vec::new();
         let mut arc_destroyer = Vec::new();
-        let mut prev = u64::MAX;
-        for t in 0..nt {
-            let k = arc_key(&creator, &destroyer, t);
-            if k != prev {
+        let mut prev = (FragmentId(u32::MAX), FragmentId(u32::MAX));
+        for (t, (&c, &d)) in creator.iter().zip(&destroyer).enumerate() {
+            if (c, d) != prev {
                 arc_start.push(t as u32);
-                arc_creator.push(creator[t]);
-                arc_destroyer.push(destroyer[t]);
-                prev = k;
+                arc_creator.push(c);
+                arc_destroyer.push(d);
+                prev = (c, d);
             }
         }
         arc_start.push(nt as u32);

@@ -320,7 +320,14 @@ impl Mt {
                 _ => {}
             }
         }
-        let level = levels(nf, &preds).ok_or_else(|| "the DAG has a cycle".to_string())?;
+        // Successors straight from the arcs (sorted by creator, each pair once), where the
+        // predecessor lists came from: no second table to build.
+        let level = levels_with(nf, &preds, |f| {
+            p.arc_destroyer[out_start[f] as usize..out_start[f + 1] as usize]
+                .iter()
+                .map(|d| d.0)
+        })
+        .ok_or_else(|| "the DAG has a cycle".to_string())?;
         let arc_box = |a: u32| {
             let a = a as usize;
             let mut b = Aabb::EMPTY;
@@ -522,6 +529,18 @@ impl Mt {
     #[inline]
     pub fn out_arcs(&self, f: FragmentId) -> ArcList<'_> {
         ArcList::Range(self.out_start[f.idx()]..self.out_start[f.idx() + 1])
+    }
+
+    /// The DAG as flat tables: `out_start` (the arcs fragment `f` creates are
+    /// `out_start[f]..out_start[f + 1]`), each arc's destroyer, and each fragment's level;
+    /// copies, for an editor that consumes the MT and still asks about the DAG before
+    /// the edit.
+    pub(crate) fn dag_tables(&self) -> (Vec<u32>, Vec<FragmentId>, Vec<u32>) {
+        (
+            self.out_start.clone(),
+            self.arc_destroyer.clone(),
+            self.level.clone(),
+        )
     }
 
     /// The fragments `f` depends on: the creators of its in-arcs, one per arc, sorted.
@@ -769,21 +788,31 @@ fn arc_between(out_start: &[u32], arc_destroyer: &[FragmentId], c: u32, d: u32) 
 
 /// Levels (longest path from a root) by Kahn's algorithm; `None` when the arcs have a cycle.
 fn levels(nf: usize, preds: &Csr) -> Option<Vec<u32>> {
-    let mut pending: Vec<u32> = (0..nf).map(|f| preds.row(f).len() as u32).collect();
-    let mut level = vec![0u32; nf];
-    // Successor lists, built here from the predecessors to stay independent of the
-    // caller's out-arcs (this also serves `validate`).
+    // Successor lists, built here from the predecessors to stay independent of the MT's
+    // out-arcs (`validate` checks those against each other).
     let out = Csr::from_pairs(
         nf,
         (0..nf as u32).flat_map(|f| preds.row(f as usize).into_iter().map(move |c| (c, f))),
     );
+    levels_with(nf, preds, |f| out.row(f))
+}
+
+/// [`levels`] with the successors of each fragment given (each once, as many as the
+/// fragments it appears in the predecessor lists of).
+fn levels_with<I: IntoIterator<Item = u32>>(
+    nf: usize,
+    preds: &Csr,
+    out: impl Fn(usize) -> I,
+) -> Option<Vec<u32>> {
+    let mut pending: Vec<u32> = (0..nf).map(|f| preds.row(f).len() as u32).collect();
+    let mut level = vec![0u32; nf];
     let mut ready: Vec<u32> = (0..nf as u32)
         .filter(|&f| pending[f as usize] == 0)
         .collect();
     let mut done = 0;
     while let Some(f) = ready.pop() {
         done += 1;
-        for g in out.row(f as usize) {
+        for g in out(f as usize) {
             let g = g as usize;
             level[g] = level[g].max(level[f as usize] + 1);
             pending[g] -= 1;
