@@ -12,8 +12,10 @@ use super::split::{Children, split_tet};
 use super::tables::{NEG, ON, POS, Side};
 use super::unglue::{Copies, StarEntry, plan_copies};
 use crate::geom::{CutPolygon, DVec3, Sign};
+use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::TET_EDGES;
 use crate::mesh::{Attribute, Attributes, FaceAdjacency, Tet, TetId, TetMesh, VertexId};
+use std::collections::HashSet;
 use std::time::{Duration, Instant};
 
 /// The per-tet column marking tets created by cuts: the 1-based number of the cut that
@@ -432,6 +434,7 @@ impl Cutter {
             let mut pinched = std::mem::take(&mut copies.pinched);
             pinched.sort_unstable();
             pinched.dedup();
+            let pinched = with_twins(pinched, &snapped, positions);
             let affected = unsnap(
                 &mut session,
                 positions,
@@ -772,6 +775,25 @@ fn add_vertices(
 /// vertex ids): interpolating them would make ids that name nothing. A point a cut makes
 /// on an edge or a face gets -1 (no such vertex); a copy keeps its original's id.
 const ID_COLUMNS: [&str; 1] = [crate::mt::POINT_VERTEX];
+
+/// `vertices` (sorted, distinct), to be unsnapped, with every vertex of `snapped` at the
+/// same position as one of them: the copies an earlier cut made of a vertex (one per lip
+/// of its crack, coincident) are unsnapped together. Unsnapped alone, one lip's edges
+/// from it could be cut while the other lip's are not: a face point on one lip, inside
+/// the coincident face of the other (a hanging vertex). Shared with the MT cut.
+pub(crate) fn with_twins(
+    vertices: Vec<VertexId>,
+    snapped: &[VertexId],
+    positions: &[DVec3],
+) -> Vec<VertexId> {
+    let key = |v: &VertexId| positions[v.idx()].to_array().map(f64::to_bits);
+    let at: HashSet<[u64; 3], FxBuild> = vertices.iter().map(key).collect();
+    let mut all = vertices;
+    all.extend(snapped.iter().filter(|v| at.contains(&key(v))));
+    all.sort_unstable();
+    all.dedup();
+    all
+}
 
 /// Leaves `vertices` (sorted, distinct), snapped so far, unsnapped: each takes the state
 /// [`unsnapped_state`] gives it in every candidate of `tets` using it (in `states`), and

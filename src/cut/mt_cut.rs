@@ -140,7 +140,7 @@
 
 use super::classify::{CutScratch, CutSession, NONE, StateClassifier, TetClass, is_candidate};
 use super::classify::{VertexOrigin, origin_positions};
-use super::cutter::{push_origin_rows, unsnap};
+use super::cutter::{push_origin_rows, unsnap, with_twins};
 use super::options::{CutError, CutOptions};
 use super::split::{Children, split_tet};
 use super::tables::{NEG, ON, POS, Side};
@@ -664,6 +664,7 @@ impl MtCutter {
             if bad.is_empty() {
                 break;
             }
+            let bad = with_twins(bad, &on_cut, positions);
             stats.vertices_unsnapped += bad.len();
             let affected = unsnap(&mut session, positions, polygon, &bad, &tets, &mut states);
             let sub_tets: Vec<Tet> = affected.iter().map(|&k| tets[k]).collect();
