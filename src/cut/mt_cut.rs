@@ -767,18 +767,26 @@ impl MtCutter {
 
         // Sub-triangles of every subdivided face of a split tet, keyed by the face as the
         // tet sees it from inside (outward orientation): what a ghost on that face becomes.
-        let on_face = |x: VertexId, face: [VertexId; 3]| -> bool {
-            if face.contains(&x) {
-                return true;
+        // Which faces of its parent (face `f` is opposite local vertex `f`) a child's
+        // vertex lies on, as a bit mask: a vertex of the parent on the three others, a cut
+        // point on the two holding its edge, a face point on its face. A child's face lies
+        // in the parent's faces of the mask its three vertices share.
+        let faces_under = |x: VertexId, parent: &Tet| -> u8 {
+            let local = |y: VertexId| parent.iter().position(|&p| p == y);
+            if let Some(j) = local(x) {
+                return 0b1111 & !(1 << j);
             }
             if x < first_new {
-                return false;
+                return 0;
             }
-            match origins[x.idx() - nv] {
-                VertexOrigin::Edge { a, b, .. } => face.contains(&a) && face.contains(&b),
-                VertexOrigin::Face { v, .. } => v.iter().all(|y| face.contains(y)),
-                VertexOrigin::Copy { .. } => false,
-            }
+            let ends: &[VertexId] = match &origins[x.idx() - nv] {
+                VertexOrigin::Edge { a, b, .. } => &[*a, *b],
+                VertexOrigin::Face { v, .. } => v,
+                VertexOrigin::Copy { .. } => return 0,
+            };
+            ends.iter()
+                .try_fold(0b1111, |m, &y| local(y).map(|j| m & !(1 << j)))
+                .unwrap_or(0)
         };
         let mut sub_faces: HashMap<FaceKey, Vec<(Tet, Side)>, FxBuild> = HashMap::default();
         for (k, &i) in child_of.iter().enumerate() {
@@ -786,24 +794,26 @@ impl MtCutter {
                 continue;
             }
             let ch = &children[i as usize];
-            for lf in TET_FACES {
-                let face = lf.map(|j| tets[k][j]);
-                let key = oriented_face(face[0].0, face[1].0, face[2].0);
-                if sub_faces.contains_key(&key) {
-                    continue;
-                }
-                let mut subs: Vec<(Tet, Side)> = Vec::new();
-                for c in 0..ch.len {
-                    let t = ch.tets[c];
-                    for cf in TET_FACES {
-                        let tri = cf.map(|j| t[j]);
-                        if tri.iter().all(|&x| on_face(x, face)) {
-                            subs.push(([tri[0], tri[1], tri[2], GHOST], ch.sides[c]));
-                        }
+            let parent = tets[k];
+            let keys = TET_FACES.map(|lf| {
+                let face = lf.map(|j| parent[j].0);
+                oriented_face(face[0], face[1], face[2])
+            });
+            let wanted = keys.map(|key| !sub_faces.contains_key(&key));
+            let mut subs: [Vec<(Tet, Side)>; 4] = Default::default();
+            for c in 0..ch.len {
+                let t = ch.tets[c];
+                let under = t.map(|x| faces_under(x, &parent));
+                for cf in TET_FACES {
+                    let shared = under[cf[0]] & under[cf[1]] & under[cf[2]];
+                    for f in (0..4).filter(|&f| shared & (1 << f) != 0 && wanted[f]) {
+                        subs[f].push(([t[cf[0]], t[cf[1]], t[cf[2]], GHOST], ch.sides[c]));
                     }
                 }
-                if subs.len() > 1 {
-                    sub_faces.insert(key, subs);
+            }
+            for (f, list) in subs.into_iter().enumerate() {
+                if wanted[f] && list.len() > 1 {
+                    sub_faces.insert(keys[f], list);
                 }
             }
         }
