@@ -4,8 +4,9 @@
 //! cells the tables create, time to split the cells, time to update the DAG, total, and
 //! total ÷ VTK's clip (`vtkTableBasedClipDataSet`, both sides, via /usr/bin/python3 and
 //! scripts/vtk/cut_vtk_clip.py, as benches/cut_vs_vtk.rs) of the finest mesh by the same
-//! plane, in the same run. Then a linear fit of total time against input cells, and one
-//! cut on the fandisk-1m MT cutting about as many cells as fandisk's middle cut.
+//! plane, in the same run. Then a linear fit of total time against input cells, one cut on
+//! the fandisk-1m MT cutting about as many cells as fandisk's middle cut, and a second one
+//! continuing it on the same cutter (a blade's next step).
 //!
 //! `cargo bench --bench table2 -- [LARGE_DIR]` (default /work/large; the 1m row is skipped
 //! with a note when `LARGE_DIR/fandisk-1m.node` is missing). Prints one JSON object on
@@ -47,13 +48,22 @@ fn square(origin: DVec3, normal: DVec3, r: f64) -> CutPolygon {
     .expect("a square is a valid polygon")
 }
 
-/// Median times (ms) and the statistics of one cut, each repetition on a fresh copy.
-fn time_cut(mt: &Mt, polygon: &CutPolygon, reps: usize) -> Result<(MtCutStats, [f64; 3]), String> {
+/// Median times (ms) and the statistics of one cut, each repetition on a fresh copy (cut
+/// first, untimed, by `before` when given: the cut is then the cutter's second).
+fn time_cut(
+    mt: &Mt,
+    before: Option<&CutPolygon>,
+    polygon: &CutPolygon,
+    reps: usize,
+) -> Result<(MtCutStats, [f64; 3]), String> {
     let (mut split, mut dag, mut total) = (vec![], vec![], vec![]);
     let mut last = None;
     for _ in 0..reps {
         let mut c =
             MtCutter::new(mt.clone(), MtCutter::DEFAULT_OPTIONS).map_err(|e| e.to_string())?;
+        if let Some(p) = before {
+            c.cut(p).map_err(|e| e.to_string())?;
+        }
         let s = c.cut(polygon).map_err(|e| e.to_string())?;
         split.push((s.time.query + s.time.split) * 1e3);
         dag.push(s.time.dag * 1e3);
@@ -145,7 +155,7 @@ fn main() {
         let diag = mesh.bbox().diagonal();
         for (k, &size) in SIZES.iter().enumerate() {
             let polygon = square(origin, normal, size * diag);
-            let (s, [split, dag, total]) = match time_cut(&mt, &polygon, REPS) {
+            let (s, [split, dag, total]) = match time_cut(&mt, None, &polygon, REPS) {
                 Ok(x) => x,
                 Err(e) => {
                     errors.push(format!("{name} size {size}: {e}"));
@@ -195,6 +205,7 @@ fn main() {
     // The same-size cut on the fandisk-1m MT: the middle cut's polygon shrunk by the ratio
     // of mean edge lengths, so it cuts about as many cells.
     let mut large_row = Value::Null;
+    let mut next_line = String::new();
     let node = large.join("fandisk-1m.node");
     match (fandisk_mid, node.exists()) {
         (Some((cells, ms, small_tets)), true) => {
@@ -203,9 +214,16 @@ fn main() {
                 Ok((mesh, mt)) => {
                     let (origin, normal) = plane_of(&mesh);
                     let shrink = (small_tets as f64 / mesh.nb_tets() as f64).cbrt();
-                    let polygon =
-                        square(origin, normal, SIZES[2] * shrink * mesh.bbox().diagonal());
-                    match time_cut(&mt, &polygon, 3) {
+                    let r = SIZES[2] * shrink * mesh.bbox().diagonal();
+                    let polygon = square(origin, normal, r);
+                    // The next step of a blade: the same square moved along its plane by
+                    // its width, continuing the first cut's crack, on the same cutter.
+                    let next = square(
+                        origin + normal.any_orthonormal_vector() * 2.0 * r,
+                        normal,
+                        r,
+                    );
+                    match time_cut(&mt, None, &polygon, 3) {
                         Ok((s, [split, dag, total])) => {
                             md.push_str(&format!(
                                 "| fandisk-1m | {:.4} | {} | {} | {} | {} | {:.3} | {split:.1} | \
@@ -230,6 +248,24 @@ fn main() {
                                 "per_cell_ratio_over_fandisk":
                                     (total / s.tets_cut.max(1) as f64) / (ms / cells.max(1) as f64),
                             });
+                            match time_cut(&mt, Some(&polygon), &next, 3) {
+                                Ok((n, [split, dag, next_total])) => {
+                                    next_line = format!(
+                                        "\nfandisk-1m, a second cut on the same cutter (the same square \
+                                         moved by its width along its plane, continuing the first \
+                                         crack): {} input cells, split {split:.1} ms, DAG {dag:.1} ms, \
+                                         total {next_total:.1} ms (the first: {total:.1} ms)\n",
+                                        n.tets_cut
+                                    );
+                                    large_row["next_cut"] = json!({
+                                        "input_cells": n.tets_cut,
+                                        "split_ms": split,
+                                        "dag_ms": dag,
+                                        "total_ms": next_total,
+                                    });
+                                }
+                                Err(e) => errors.push(format!("fandisk-1m, second cut: {e}")),
+                            }
                         }
                         Err(e) => errors.push(format!("fandisk-1m: {e}")),
                     }
@@ -245,6 +281,7 @@ fn main() {
          {:.3} µs × cells, r² = {r2:.3}\n",
         b * 1e3
     ));
+    md.push_str(&next_line);
     eprintln!("\n{md}");
     let out = json!({
         "benchmark": "table2",

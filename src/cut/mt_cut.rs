@@ -149,7 +149,7 @@ use crate::geom::{Aabb, CutPolygon, DVec3};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::{TET_EDGES, TET_FACES, flip_face, oriented_face};
 use crate::mesh::{FragmentId, Tet, TetId, VertexId};
-use crate::mt::{FragmentBvh, FragmentKind, GHOST, Mt, OpenMt};
+use crate::mt::{FragmentBvh, FragmentKind, GHOST, Mt, OpenMt, TetLinks};
 use std::collections::{HashMap, HashSet};
 use std::time::Instant;
 
@@ -269,6 +269,10 @@ pub struct MtCutter {
     /// Per fragment: the next fragment a cut split off the same hierarchy entry (`NONE`:
     /// the last); each split-off fragment's box lies in its origin's.
     split_off: Vec<u32>,
+    /// The creator and destroyer of each pool tet of `mt`, kept from the last cut's close
+    /// (8 bytes per pool tet) so that the next cut opens the MT without deriving them
+    /// (`None` before the first cut).
+    links: Option<TetLinks>,
 }
 
 /// Largest `snap` an MT cut accepts (see the module docs, "Limits").
@@ -364,6 +368,7 @@ impl MtCutter {
             fragment_bvh,
             fragment_bvh_slack,
             split_off,
+            links: None,
         })
     }
 
@@ -871,7 +876,11 @@ impl MtCutter {
             }
         }
         let roots_before = mt.roots().to_vec();
-        let mut open: OpenMt = self.mt.take().expect("MtCutter holds its MT").open();
+        let mut open: OpenMt = self
+            .mt
+            .take()
+            .expect("MtCutter holds its MT")
+            .open_with(self.links.take());
         let new_positions = origin_positions(&open.positions, &origins);
         open.positions.extend(new_positions);
         push_origin_rows(&mut open.point_data, &mut self.scales, &origins);
@@ -1195,9 +1204,10 @@ impl MtCutter {
         // sub-triangles; crack ghosts lie inside): only a fragment that gave tets to the
         // fragments split off it has a new box (and those, added, get theirs).
         open.changed_fragments = Some(split.iter().map(|f| f.0).collect());
-        let mt = open
-            .close()
+        let (mt, links) = open
+            .close_keeping_links()
             .unwrap_or_else(|e| panic!("the MT cut left an inconsistent store: {e}"));
+        self.links = Some(links);
         stats.components = mt.nb_components();
         self.mt = Some(mt);
         self.last_origins = origins;

@@ -51,22 +51,52 @@ pub struct OpenMt {
     boxes: Option<(BoxFrame, Vec<QuantBox>)>,
 }
 
+/// The creator and destroyer of every pool tet of an MT, in pool order: what [`Mt::open`]
+/// derives from the arcs, kept by an editor that edits the same MT again
+/// ([`OpenMt::close_keeping_links`], [`Mt::open_with`]) so that opening it costs nothing.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct TetLinks {
+    creator: Vec<FragmentId>,
+    destroyer: Vec<FragmentId>,
+}
+
 impl Mt {
     /// The open form of this MT (per-tet creator and destroyer).
     pub fn open(self) -> OpenMt {
+        self.open_with(None)
+    }
+
+    /// [`open`](Self::open), taking the per-tet creators and destroyers from `links`: they
+    /// must be those [`OpenMt::close_keeping_links`] returned with this very MT (checked
+    /// against the arcs in debug builds; links of another length are not used).
+    pub(crate) fn open_with(self, links: Option<TetLinks>) -> OpenMt {
         let nt = self.nb_tets();
-        // Filled run by run (a fragment's ceiling is contiguous: arcs are sorted by
-        // creator), at the speed of a memset.
-        let mut creator = vec![FragmentId(0); nt];
-        let mut destroyer = vec![FragmentId(0); nt];
-        let start = |a: u32| self.arc_start[a as usize] as usize;
-        for f in 0..self.nb_fragments() {
-            let (a, b) = (self.out_start[f], self.out_start[f + 1]);
-            creator[start(a)..start(b)].fill(FragmentId::from_usize(f));
-            for a in a..b {
-                destroyer[start(a)..start(a + 1)].fill(self.arc_destroyer[a as usize]);
+        let (creator, destroyer) = match links {
+            Some(l) if l.creator.len() == nt && l.destroyer.len() == nt => {
+                debug_assert!(
+                    self.arcs().all(|(a, c, d)| {
+                        let r = self.arc_tets(a);
+                        l.creator[r.clone()].iter().all(|&x| x == c)
+                            && l.destroyer[r].iter().all(|&x| x == d)
+                    }),
+                    "links kept from another MT"
+                );
+                (l.creator, l.destroyer)
             }
-        }
+            _ => {
+                // Written once, run by run, with room for the tets an edit appends (a cut
+                // appends a few per tet it splits) so appending does not copy them.
+                let room = nt + nt / 8 + 1024;
+                let mut creator = Vec::with_capacity(room);
+                let mut destroyer = Vec::with_capacity(room);
+                for (a, c, d) in self.arcs() {
+                    let n = self.arc_tets(a).len();
+                    creator.extend(std::iter::repeat_n(c, n));
+                    destroyer.extend(std::iter::repeat_n(d, n));
+                }
+                (creator, destroyer)
+            }
+        };
         OpenMt {
             positions: self.positions,
             point_data: self.point_data,
@@ -224,6 +254,12 @@ impl OpenMt {
     /// (see `Merge`; `relabelled` makes it apply, and cannot change the result). Errors say
     /// what is inconsistent (an editing bug).
     pub fn close(self) -> Result<Mt, String> {
+        self.close_keeping_links().map(|(mt, _)| mt)
+    }
+
+    /// [`close`](Self::close), returning also the creator and destroyer of each tet of the
+    /// closed MT, for [`Mt::open_with`].
+    pub(crate) fn close_keeping_links(self) -> Result<(Mt, TetLinks), String> {
         let nt = self.tets.len();
         if self.creator.len() != nt || self.destroyer.len() != nt {
             return Err(format!(
@@ -317,6 +353,7 @@ impl OpenMt {
             info,
             ..
         } = this;
+        let links = TetLinks { creator, destroyer };
         Mt::assemble(MtParts {
             positions,
             point_data,
@@ -330,6 +367,7 @@ impl OpenMt {
             info,
             known_boxes,
         })
+        .map(|mt| (mt, links))
     }
 }
 

@@ -70,6 +70,7 @@ pub use build::{BuildError, BuildOptions, BuildPhase, BuildProgress, BuildStats,
 pub use bvh::{Bvh, FragmentBvh, FragmentHit, Region};
 pub use canonical::{CanonicalFragment, CanonicalMt, TetKey};
 pub use edit::OpenMt;
+pub(crate) use edit::TetLinks;
 pub use error::{BoundaryError, ErrorMetric, QualityError, TetError, TetSample, VolumeError};
 pub use extract::{
     CELL_ERROR, CELL_FRAGMENT, CELL_LEVEL, ExtractError, ExtractOptions, ExtractStats, Extraction,
