@@ -119,11 +119,12 @@
 //! * A vertex exactly on the cut whose tets in the finest mesh do not form one group per
 //!   side (the engine's *pinched* vertices and boundary saddles) is left unsnapped on every
 //!   level, as the engine does on a plain mesh; coarser levels are not analysed separately.
-//! * Opening the MT (a creator and a destroyer per pool tet) and closing it (the pool
-//!   merged back into arcs, levels and arc lists derived again), and grouping parts by
-//!   body (a pass over the DAG's arcs), cost time in proportion to the pool and the DAG,
-//!   not to the cut; so does a cut that separates a finest mesh (its root's ceiling is
-//!   read). Measured in `benches/table2.rs`.
+//! * Closing the MT after a cut (the pool merged back into arcs, levels and arc lists
+//!   derived again), grouping parts by body (a pass over the DAG's arcs) and, on a
+//!   cutter's first cut, opening it (a creator and a destroyer per pool tet, which the
+//!   cutter then keeps from cut to cut: 8 bytes per pool tet) cost time in proportion to
+//!   the pool and the DAG, not to the cut; so does a cut that separates a finest mesh (its
+//!   root's ceiling is read). Measured in `benches/table2.rs`.
 //! * Every level is cut, so the pool grows with every cut by several tets per tet cut on
 //!   every level (the tests' 50 random cuts through fandisk take its pool from 0.15 M to
 //!   5.9 M tets).
