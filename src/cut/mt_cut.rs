@@ -869,8 +869,9 @@ impl MtCutter {
                 spans.entry(f.0).or_insert_with(|| Spans::of(mt, f));
             };
             for t in cand.iter().copied().chain(ghosts.iter().map(|&g| TetId(g))) {
-                note(mt.tet_creator(t));
-                note(mt.tet_destroyer(t));
+                let a = mt.tet_arc(t);
+                note(mt.arc_creator(a));
+                note(mt.arc_destroyer(a));
             }
             for f in (0..self.cracked.len()).filter(|&f| self.cracked[f]) {
                 note(FragmentId::from_usize(f));
@@ -1017,12 +1018,7 @@ impl MtCutter {
         // over its ceiling; otherwise (a cut separating the finest mesh, say) it is split
         // like the others.
         let mut whole_roots = 0;
-        let mut pieces = Pieces {
-            first: vec![0; open.positions.len()],
-            stamp: vec![0; open.positions.len()],
-            epoch: 0,
-            parent: Vec::new(),
-        };
+        let mut pieces: Option<Pieces> = None;
         for &r in &roots_before {
             if !involved[r.idx()] || self.cracked.get(r.idx()).copied().unwrap_or(false) {
                 continue;
@@ -1033,6 +1029,13 @@ impl MtCutter {
                 .copied()
                 .filter(|&t| open.creator[t as usize] == r)
                 .collect();
+            let vertices = open.positions.len();
+            let pieces = pieces.get_or_insert_with(|| Pieces {
+                first: vec![0; vertices],
+                stamp: vec![0; vertices],
+                epoch: 0,
+                parent: Vec::new(),
+            });
             if pieces.one_piece(&open.tets, made.iter()) {
                 involved[r.idx()] = false;
                 whole_roots += 1;
