@@ -102,6 +102,11 @@ impl StateCache {
             self.stamp.iter_mut().for_each(|s| *s = 0);
             self.epoch = 1;
         }
+        self.reserve(n_vertices);
+    }
+
+    /// Makes room for `n_vertices` (done ahead, the first cut does not pay for it).
+    pub fn reserve(&mut self, n_vertices: usize) {
         if self.stamp.len() < n_vertices {
             self.stamp.resize(n_vertices, 0);
             self.state.resize(n_vertices, 0);
@@ -189,7 +194,8 @@ impl CutScratch {
         self.epoch
     }
 
-    fn reserve(&mut self, n_vertices: usize) {
+    /// Makes room for `n_vertices` (done ahead, the first cut does not pay for it).
+    pub(crate) fn reserve(&mut self, n_vertices: usize) {
         if self.stamp.len() < n_vertices {
             self.stamp.resize(n_vertices, 0);
             self.edge_head.resize(n_vertices, NONE);
@@ -408,10 +414,17 @@ impl<'a> StateClassifier<'a> {
         tet: &Tet,
         mut near: impl FnMut(VertexId) -> u8,
     ) -> [u8; 4] {
-        let d = tet.map(|v| self.normal.dot(positions[v.idx()]) - self.offset);
-        let close = d.map(|x| x.abs() <= self.far);
+        let dist = |v: VertexId| self.normal.dot(positions[v.idx()]) - self.offset;
+        let d = [dist(tet[0]), dist(tet[1]), dist(tet[2]), dist(tet[3])];
+        let close = [
+            d[0].abs() <= self.far,
+            d[1].abs() <= self.far,
+            d[2].abs() <= self.far,
+            d[3].abs() <= self.far,
+        ];
+        let side = |x: f64| if x > 0.0 { POS } else { NEG };
         if !(close[0] | close[1] | close[2] | close[3]) {
-            return d.map(|x| if x > 0.0 { POS } else { NEG });
+            return [side(d[0]), side(d[1]), side(d[2]), side(d[3])];
         }
         let mut out = [0u8; 4];
         for j in 0..4 {

@@ -10,7 +10,10 @@ use super::options::{CutError, CutOptions, Scheme};
 use super::report::{CutResult, CutStats, CutTimes, SplitRecord};
 use super::split::{Children, split_tet};
 use super::tables::{NEG, ON, POS, Side};
-use super::unglue::{Copies, StarEntry, plan_copies};
+use super::unglue::{
+    Copies, LinkSlots, ParentAt, ParentPlan, PlanScratch, StarEntry, entry_at_vertex,
+    plan_by_parents, plan_vertex,
+};
 use crate::geom::{CutPolygon, DVec3, Sign};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::TET_EDGES;
@@ -60,6 +63,8 @@ pub struct Cutter {
     /// During a pass of the copy planning, the index of each vertex it examines; `NONE`
     /// for every other vertex (and for all between passes).
     snapped_slot: Vec<u32>,
+    /// Scratch of the copy planning ([`plan_by_parents`]).
+    links: LinkSlots,
     options: CutOptions,
     cuts_applied: u32,
     build_time: Duration,
@@ -69,18 +74,24 @@ pub struct Cutter {
     tips: Option<CrackTips>,
 }
 
-/// The vertices snapped onto the cut (sorted, distinct).
-fn snapped_vertices(tets: &[Tet], classes: &[TetClass]) -> Vec<VertexId> {
+/// The vertices snapped onto the cut (sorted, distinct). `mark` has an entry per vertex,
+/// all `NONE`, and is left so.
+fn snapped_vertices(tets: &[Tet], classes: &[TetClass], mark: &mut [u32]) -> Vec<VertexId> {
     let mut snapped: Vec<VertexId> = Vec::new();
     for (tet, c) in tets.iter().zip(classes) {
-        for (j, &s) in c.states.iter().enumerate() {
-            if s == ON {
-                snapped.push(tet[j]);
+        if c.touches_cut() {
+            for (j, &s) in c.states.iter().enumerate() {
+                if s == ON && mark[tet[j].idx()] == NONE {
+                    mark[tet[j].idx()] = 0;
+                    snapped.push(tet[j]);
+                }
             }
         }
     }
+    for v in &snapped {
+        mark[v.idx()] = NONE;
+    }
     snapped.sort_unstable();
-    snapped.dedup();
     snapped
 }
 
@@ -148,18 +159,21 @@ impl Cutter {
                 0
             }
         };
-        Cutter {
+        let mut cutter = Cutter {
             mesh,
             scales,
             bvh,
             scratch: CutScratch::new(),
             state_cache: StateCache::default(),
             snapped_slot: Vec::new(),
+            links: LinkSlots::default(),
             options,
             cuts_applied,
             build_time,
             tips: Some(CrackTips::default()),
-        }
+        };
+        cutter.reserve_scratch(cutter.mesh.nb_vertices());
+        cutter
     }
 
     pub fn mesh(&self) -> &TetMesh {
@@ -215,6 +229,17 @@ impl Cutter {
         self.mesh.reserve(tets, vertices);
         self.scales.reserve(vertices);
         self.bvh.reserve_tets(self.mesh.nb_tets() + tets);
+        self.reserve_scratch(self.mesh.nb_vertices() + vertices);
+    }
+
+    /// Sizes the per-vertex scratch arrays of the cut for `n_vertices`.
+    fn reserve_scratch(&mut self, n_vertices: usize) {
+        self.scratch.reserve(n_vertices);
+        self.state_cache.reserve(n_vertices);
+        self.links.reserve(n_vertices);
+        if self.snapped_slot.len() < n_vertices {
+            self.snapped_slot.resize(n_vertices, NONE);
+        }
     }
 
     /// Time spent building the vertex scales and the hierarchy.
@@ -385,6 +410,9 @@ impl Cutter {
             child_of[k] = i as u32;
         }
         let mut children = computed;
+        // Room for the tets unsnapping splits again (each pass redoes a few), so that
+        // pushing them does not move every child planned so far.
+        children.reserve(children.len() / 4 + 16);
         times.split += t.elapsed().as_secs_f64();
 
         let mut unsnapped: Vec<VertexId> = Vec::new();
@@ -393,7 +421,10 @@ impl Cutter {
         let mut redo: Option<Vec<VertexId>> = None;
         let mut copies = Copies::default();
         // The snapped vertices (sorted); unsnapping only removes some.
-        let mut snapped = snapped_vertices(&tets, &classes);
+        if self.snapped_slot.len() < n_vertices {
+            self.snapped_slot.resize(n_vertices, NONE);
+        }
+        let mut snapped = snapped_vertices(&tets, &classes, &mut self.snapped_slot);
         let snapped = loop {
             passes += 1;
             let t = Instant::now();
@@ -414,10 +445,17 @@ impl Cutter {
                 for (i, v) in examine.iter().enumerate() {
                     slots[v.idx()] = i as u32;
                 }
-                let star = Self::star_of(
-                    &self.mesh, polygon, &tets, &classes, &children, &child_of, slots,
+                let update = Self::plan_pass(
+                    &self.mesh,
+                    polygon,
+                    &tets,
+                    &classes,
+                    &children,
+                    &child_of,
+                    &examine,
+                    slots,
+                    &mut self.links,
                 );
-                let update = plan_copies(&examine, &star, |v| slots[v.idx()] as usize);
                 for v in &examine {
                     slots[v.idx()] = NONE;
                 }
@@ -665,75 +703,166 @@ impl Cutter {
         })
     }
 
-    /// The tets around the snapped vertices to examine (those with a slot in `slots`,
-    /// `NONE` for the others), with their planned sides. Tets are named by virtual slots:
-    /// candidate `k`'s child `c` is `32 k + c` (child 0 of a split tet, and an unsplit tet,
-    /// take the tet's slot).
-    fn star_of(
+    /// The copies of the snapped vertices `examine` (each with its index in `slots`, `NONE`
+    /// for every other vertex), from the candidates around them as planned so far: each
+    /// vertex decided from the tets around it when [`plan_by_parents`] can, from their
+    /// children otherwise ([`plan_vertex`]). The tets taking a copy are named by virtual
+    /// slots: candidate `k`'s child `c` is `32 k + c` (child 0 of a split tet, and an
+    /// unsplit tet, take the tet's slot).
+    #[allow(clippy::too_many_arguments)]
+    fn plan_pass(
         mesh: &TetMesh,
         polygon: &CutPolygon,
         tets: &[Tet],
         classes: &[TetClass],
         children: &[Children],
         child_of: &[u32],
+        examine: &[VertexId],
         slots: &[u32],
-    ) -> Vec<StarEntry> {
-        let wanted = |v: VertexId| slots.get(v.idx()).is_some_and(|&s| s != NONE);
-        let mut star: Vec<StarEntry> = Vec::new();
-        for (k, c) in classes.iter().enumerate() {
-            if !c.touches_cut() {
-                continue;
-            }
-            let tet = &tets[k];
-            if !(0..4).any(|j| c.states[j] == ON && wanted(tet[j])) {
-                continue;
-            }
-            match child_of[k] {
-                i if i != NONE => {
-                    let ch = &children[i as usize];
-                    for i in 0..ch.len {
-                        for (j, &v) in ch.tets[i].iter().enumerate() {
-                            if ch.on_cut[i] & (1 << j) != 0 && wanted(v) {
-                                star.push(StarEntry {
-                                    vertex: v,
-                                    tet: TetId((32 * k + i) as u32),
-                                    verts: ch.tets[i],
-                                    side: ch.sides[i],
-                                });
-                            }
-                        }
-                    }
-                }
-                _ => {
-                    let side = Self::unsplit_side(mesh, polygon, tet, &c.states);
-                    for (j, &v) in tet.iter().enumerate() {
-                        if c.states[j] == ON && wanted(v) {
-                            star.push(StarEntry {
-                                vertex: v,
-                                tet: TetId((32 * k) as u32),
-                                verts: *tet,
-                                side,
-                            });
-                        }
+        links: &mut LinkSlots,
+    ) -> Copies {
+        let slot_of = |v: VertexId| slots.get(v.idx()).copied().unwrap_or(NONE);
+        // (candidate, local index) of every examined vertex in every candidate, bucketed by
+        // vertex (a counting sort: candidates stay in order).
+        let mut start = vec![0u32; examine.len() + 1];
+        for (tet, c) in tets.iter().zip(classes) {
+            if c.touches_cut() {
+                for (&v, &state) in tet.iter().zip(&c.states) {
+                    let s = slot_of(v);
+                    if state == ON && s != NONE {
+                        start[s as usize + 1] += 1;
                     }
                 }
             }
         }
-        star
+        for i in 0..examine.len() {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut at = vec![(0u32, 0u8); start[examine.len()] as usize];
+        // The side of each whole candidate around them (`Side` of `unsplit_side`).
+        let mut whole_side = vec![Side::Straddle; classes.len()];
+        for (k, (tet, c)) in tets.iter().zip(classes).enumerate() {
+            if c.touches_cut() {
+                let mut any = false;
+                for (j, (&v, &state)) in tet.iter().zip(&c.states).enumerate() {
+                    let s = slot_of(v);
+                    if state == ON && s != NONE {
+                        at[fill[s as usize] as usize] = (k as u32, j as u8);
+                        fill[s as usize] += 1;
+                        any = true;
+                    }
+                }
+                if any && child_of[k] == NONE {
+                    whole_side[k] = Self::unsplit_side(mesh, polygon, &tets[k], &c.states);
+                }
+            }
+        }
+        let mut out = Copies::default();
+        let mut scratch = PlanScratch::default();
+        let mut around: Vec<ParentAt> = Vec::new();
+        let mut entries: Vec<StarEntry> = Vec::new();
+        // The tets around v made from candidate k, with their virtual slots and sides: its
+        // children through v when split, itself when whole.
+        let around_v = |v: VertexId, k: usize, f: &mut dyn FnMut(TetId, Tet, Side)| {
+            if child_of[k] == NONE {
+                f(TetId((32 * k) as u32), tets[k], whole_side[k]);
+            } else {
+                let ch = &children[child_of[k] as usize];
+                for c in 0..ch.len {
+                    if ch.tets[c].contains(&v) {
+                        f(TetId((32 * k + c) as u32), ch.tets[c], ch.sides[c]);
+                    }
+                }
+            }
+        };
+        for (i, &v) in examine.iter().enumerate() {
+            let run = &at[start[i] as usize..start[i + 1] as usize];
+            around.clear();
+            for &(k, j) in run {
+                let (k, c) = (k as usize, &classes[k as usize]);
+                around.push(if child_of[k] == NONE {
+                    ParentAt {
+                        verts: tets[k],
+                        states: c.states,
+                        j,
+                        sides: if whole_side[k] == Side::Positive {
+                            1
+                        } else {
+                            2
+                        },
+                        regular: true,
+                    }
+                } else {
+                    let ch = &children[child_of[k] as usize];
+                    let (regular, sides) = entry_at_vertex(ch.config);
+                    let r = ch.rank[j as usize];
+                    ParentAt {
+                        verts: tets[k],
+                        states: c.states,
+                        j,
+                        sides: (sides >> (2 * r)) & 3,
+                        regular: regular & (1 << r) != 0,
+                    }
+                });
+            }
+            let from_children =
+                |entries: &mut Vec<StarEntry>, out: &mut Copies, scratch: &mut PlanScratch| {
+                    entries.clear();
+                    for &(k, _) in run {
+                        around_v(v, k as usize, &mut |tet, verts, side| {
+                            entries.push(StarEntry {
+                                vertex: v,
+                                tet,
+                                verts,
+                                side,
+                            })
+                        });
+                    }
+                    plan_vertex(v, entries, scratch, out);
+                };
+            let plan = plan_by_parents(&around, links, mesh.nb_vertices());
+            let groups_before = out.groups.len();
+            match plan {
+                ParentPlan::Keep => {}
+                ParentPlan::CopyNegative => {
+                    let mut members = Vec::with_capacity(2 * run.len());
+                    for &(k, _) in run {
+                        around_v(v, k as usize, &mut |tet, _, side| {
+                            if side == Side::Negative {
+                                members.push(tet);
+                            }
+                        });
+                    }
+                    out.groups.push((v, members));
+                }
+                ParentPlan::Children => from_children(&mut entries, &mut out, &mut scratch),
+            }
+            if cfg!(debug_assertions) && plan != ParentPlan::Children {
+                let mut check = Copies::default();
+                from_children(&mut entries, &mut check, &mut scratch);
+                debug_assert!(
+                    check.pinched.is_empty() && check.groups[..] == out.groups[groups_before..],
+                    "vertex {v}: planned from its tets as {plan:?}, from their children as {check:?}"
+                );
+            }
+        }
+        out
     }
 
     /// The side of a tet the tables leave whole but that touches the cut at a vertex: the
     /// side of its other vertices; a tet with all four vertices snapped (a sliver lying in
     /// the cut) goes to the side of its centroid.
     fn unsplit_side(mesh: &TetMesh, polygon: &CutPolygon, tet: &Tet, states: &[u8; 4]) -> Side {
-        if states.contains(&POS) {
+        let present = (1u8 << states[0]) | (1 << states[1]) | (1 << states[2]) | (1 << states[3]);
+        if present & (1 << POS) != 0 {
             debug_assert!(
-                !states.contains(&NEG),
+                present & (1 << NEG) == 0,
                 "an unsplit tet straddles at a snapped vertex"
             );
             return Side::Positive;
         }
-        if states.contains(&NEG) {
+        if present & (1 << NEG) != 0 {
             return Side::Negative;
         }
         let c: DVec3 = tet.iter().map(|v| mesh.position(*v)).sum::<DVec3>() * 0.25;
@@ -810,10 +939,15 @@ pub(crate) fn unsnap(
     debug_assert!(vertices.windows(2).all(|w| w[0] < w[1]));
     // (vertex index, candidate, corner), grouped by vertex: one pass over the candidates.
     let mut uses: Vec<(usize, usize, usize)> = Vec::new();
+    let (Some(&lo), Some(&hi)) = (vertices.first(), vertices.last()) else {
+        return Vec::new();
+    };
     for (k, tet) in tets.iter().enumerate() {
         for (j, v) in tet.iter().enumerate() {
-            if let Ok(i) = vertices.binary_search(v) {
-                uses.push((i, k, j));
+            if (lo..=hi).contains(v) {
+                if let Ok(i) = vertices.binary_search(v) {
+                    uses.push((i, k, j));
+                }
             }
         }
     }

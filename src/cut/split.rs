@@ -11,12 +11,20 @@ use crate::mesh::{Tet, VertexId};
 /// most 13).
 pub const MAX_CHILDREN: usize = 17;
 
+/// [`Children::config`] of children not made by the tables (the 1:17 scheme).
+pub const NO_CONFIG: u16 = u16::MAX;
+
 /// The children of one split tet: global vertex ids, positively oriented, with their side,
 /// and which of their vertices lie on the cut (bit `k` for vertex `k`: these are the
 /// vertices [`super::unglue`] may duplicate).
 #[derive(Clone, Copy, Debug)]
 pub struct Children {
     pub case: CutCase,
+    /// The table configuration the children come from ([`NO_CONFIG`]: not from the
+    /// tables), and the canonical index of each of the parent's local vertices (see
+    /// [`canonical_order`]): what [`super::unglue`] looks the entry up by.
+    pub config: u16,
+    pub rank: [u8; 4],
     pub len: usize,
     pub tets: [Tet; MAX_CHILDREN],
     pub sides: [Side; MAX_CHILDREN],
@@ -28,6 +36,8 @@ impl Children {
     pub fn new() -> Children {
         Children {
             case: CutCase::A,
+            config: NO_CONFIG,
+            rank: [0; 4],
             len: 0,
             tets: [[VertexId::INVALID; 4]; MAX_CHILDREN],
             sides: [Side::Straddle; MAX_CHILDREN],
@@ -84,7 +94,12 @@ pub fn split_tet(
         return false;
     }
     let (perm, odd) = canonical_order(tet);
-    let states = perm.map(|i| class.states[i]);
+    let states = [
+        class.states[perm[0]],
+        class.states[perm[1]],
+        class.states[perm[2]],
+        class.states[perm[3]],
+    ];
     let mut cut_mask = 0u8;
     let mut points = [VertexId::INVALID; 20];
     for i in 0..4 {
@@ -113,12 +128,21 @@ pub fn split_tet(
         "split configuration without table entry"
     );
     out.case = CutCase::ALL[CASES[config] as usize];
+    out.config = config as u16;
+    for (i, &p) in perm.iter().enumerate() {
+        out.rank[p] = i as u8;
+    }
     out.len = locals.len();
     let touches = class.touches_cut();
     for (k, (c, &s)) in locals.iter().zip(sides).enumerate() {
         // A mirrored canonical tet is mirrored back by swapping the last two vertices.
         let c = if odd { [c[0], c[1], c[3], c[2]] } else { *c };
-        out.tets[k] = c.map(|p| points[p as usize]);
+        out.tets[k] = [
+            points[c[0] as usize],
+            points[c[1] as usize],
+            points[c[2] as usize],
+            points[c[3] as usize],
+        ];
         out.sides[k] = side_of_code(s);
         let mut on = 0u8;
         if touches {
