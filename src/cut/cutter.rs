@@ -232,6 +232,18 @@ impl Cutter {
         self.reserve_scratch(self.mesh.nb_vertices() + vertices);
     }
 
+    /// Makes sure at least `fraction` of the current tets and vertices can be appended
+    /// without reallocating ([`reserve`](Self::reserve) when fewer can): a caller with
+    /// spare time between cuts keeps reallocation (a copy of every array) out of them.
+    pub fn keep_room(&mut self, fraction: f64) {
+        let (tets, vertices) = self.mesh.spare();
+        let want_tets = (self.mesh.nb_tets() as f64 * fraction).ceil() as usize;
+        let want_vertices = (self.mesh.nb_vertices() as f64 * fraction).ceil() as usize;
+        if tets < want_tets || vertices < want_vertices {
+            self.reserve(want_tets, want_vertices);
+        }
+    }
+
     /// Sizes the per-vertex scratch arrays of the cut for `n_vertices`.
     fn reserve_scratch(&mut self, n_vertices: usize) {
         self.scratch.reserve(n_vertices);

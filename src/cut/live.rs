@@ -376,6 +376,7 @@ impl LiveMt {
             report.remeshed = true;
         }
         report.cuts_left = self.pending.len();
+        self.current.keep_room(ROOM);
         report.seconds = start.elapsed().as_secs_f64();
         Ok(report)
     }
@@ -558,8 +559,15 @@ fn current_cutter(mt: &MtCutter, mesh: TetMesh, ids: &[VertexId]) -> Result<Cutt
     // Components are the MT's business (`Mt::nb_components`): counting them on every
     // frontier-first cut would cost a pass over the current mesh.
     let options = mt.options().with_count_components(false);
-    Cutter::for_mt_frontier(mesh, scales, options)
+    let mut cutter = Cutter::for_mt_frontier(mesh, scales, options)?;
+    cutter.keep_room(ROOM);
+    Ok(cutter)
 }
+
+/// The share of its size a current mesh keeps free for the tets and vertices of the next
+/// frontier-first cuts (topped up by [`LiveMt::process_pending`]), so that none of them
+/// pays for copying the mesh's arrays to larger ones.
+const ROOM: f64 = 0.25;
 
 /// `polygon` (given in `d`'s current space) mapped to rest space by the affine map that
 /// best fits (least squares) the current→rest map of the current vertices around it (those

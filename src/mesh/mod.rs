@@ -261,6 +261,14 @@ impl TetMesh {
         self.point_data.reserve(vertices);
     }
 
+    /// How many tets and vertices can still be appended without reallocating.
+    pub(crate) fn spare(&self) -> (usize, usize) {
+        (
+            self.tets.capacity() - self.tets.len(),
+            self.positions.capacity() - self.positions.len(),
+        )
+    }
+
     /// Appends a vertex (attribute rows are the caller's: see [`Attributes::push_lerp`]).
     pub(crate) fn push_vertex(&mut self, p: DVec3) -> VertexId {
         self.positions.push(p);
