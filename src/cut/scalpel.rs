@@ -6,7 +6,7 @@
 //! and the MT later, is [`super::LiveMt`] given the same sweeps.
 //!
 //! The MT cut runs with the smallest face-point margin
-//! ([`MIN_FACE_POINT_MARGIN`](super::MIN_FACE_POINT_MARGIN)): each step continues the
+//! ([`super::MIN_FACE_POINT_MARGIN`]): each step continues the
 //! last one's crack, whose tips then lie within the contour band of the new polygon (see
 //! [`super::mt_cut`]; with the default margin, tips in the middle of their faces lie
 //! beyond it and the levels disagree).

@@ -11,14 +11,15 @@
 //! * opaque handles (`mtcut_mesh`, `mtcut_mt`, `mtcut_frontier`, `mtcut_live`), created by `mtcut_<object>_<verb>` functions into an
 //!   `out` argument and released by `mtcut_<object>_free`;
 //! * every fallible function returns an `mtcut_status` with a fixed value
-//!   ([`status`]), and leaves a message for `mtcut_last_error_message` ([`error`]);
-//! * every entry point runs behind a panic boundary ([`guard`]): a panic would otherwise
+//!   (module `status`), and leaves a message for `mtcut_last_error_message` (module
+//!   `error`);
+//! * every entry point runs behind a panic boundary (module `guard`): a panic would otherwise
 //!   unwind into C, which aborts the host program;
 //! * outputs are written only on success, and nothing the caller owns is modified on
 //!   failure;
 //! * enums arrive as `uint32_t` and are validated before use, because an out-of-range
 //!   value in a Rust enum is undefined behaviour;
-//! * structs that may grow start with `struct_size` ([`versioned`]).
+//! * structs that may grow start with `struct_size` (module `versioned`).
 
 #![allow(non_camel_case_types)]
 
