@@ -120,11 +120,14 @@
 //!   side (the engine's *pinched* vertices and boundary saddles) is left unsnapped on every
 //!   level, as the engine does on a plain mesh; coarser levels are not analysed separately.
 //! * Closing the MT after a cut (the pool merged back into arcs, levels and arc lists
-//!   derived again), grouping parts by body (a pass over the DAG's arcs) and, on a
-//!   cutter's first cut, opening it (a creator and a destroyer per pool tet, which the
-//!   cutter then keeps from cut to cut: 8 bytes per pool tet) cost time in proportion to
-//!   the pool and the DAG, not to the cut; so does a cut that separates a finest mesh (its
-//!   root's ceiling is read). Measured in `benches/table2.rs`.
+//!   derived again) and grouping parts by body (a pass over the DAG's arcs) cost time in
+//!   proportion to the pool and the DAG, not to the cut; so does a cut that separates a
+//!   finest mesh (its root's ceiling is read), and counting the components after a cut
+//!   that splits fragments. What the first cut would also pay in proportion to the pool
+//!   is paid when the cutter is made ([`MtCutter::new`]): the open form's creator and
+//!   destroyer per pool tet (kept from cut to cut: 8 bytes per pool tet) and room for an
+//!   eighth more tets and vertices in the pool (kept by each close), so appending does
+//!   not copy it. Measured in `benches/table2.rs`.
 //! * Every level is cut, so the pool grows with every cut by several tets per tet cut on
 //!   every level (the tests' 50 random cuts through fandisk take its pool from 0.15 M to
 //!   5.9 M tets).
@@ -270,10 +273,13 @@ pub struct MtCutter {
     /// Per fragment: the next fragment a cut split off the same hierarchy entry (`NONE`:
     /// the last); each split-off fragment's box lies in its origin's.
     split_off: Vec<u32>,
-    /// The creator and destroyer of each pool tet of `mt`, kept from the last cut's close
-    /// (8 bytes per pool tet) so that the next cut opens the MT without deriving them
-    /// (`None` before the first cut).
+    /// The creator and destroyer of each pool tet of `mt` (8 bytes per pool tet), derived
+    /// when the cutter is made and kept from each cut's close, so that a cut opens the MT
+    /// without deriving them (`None` only while a cut has the MT open).
     links: Option<TetLinks>,
+    /// The MT's number of independent components (changed only by a cut that splits
+    /// fragments).
+    components: usize,
 }
 
 /// Largest `snap` an MT cut accepts (see the module docs, "Limits").
@@ -314,7 +320,10 @@ impl MtCutter {
     };
 
     /// Prepares `mt` (which should be valid: [`Mt::validate`]) for cutting with `options`
-    /// (start from [`MtCutter::DEFAULT_OPTIONS`]). Only
+    /// (start from [`MtCutter::DEFAULT_OPTIONS`]): vertex scales, the hierarchy over
+    /// fragment boxes, the fragments earlier cuts left cracked, the per-tet links of the
+    /// open form and room in the pool, so that cuts cost in proportion to what they
+    /// change (see the module docs' limits for what does not). Only
     /// [`Scheme::Lut`](super::Scheme::Lut) is supported (the 1:17 scheme does not conform
     /// across tets, which the levels of an MT need), and `snap` at most [`MAX_MT_SNAP`]
     /// (see the module docs, "Limits").
@@ -357,6 +366,12 @@ impl MtCutter {
         // Four steps of the boxes' 16-bit quantisation.
         let fragment_bvh_slack = (bounds.max - bounds.min) * (4.0 / f64::from(u16::MAX));
         let split_off = vec![NONE; mt.nb_fragments()];
+        // What the first cut would pay for in proportion to the pool, paid here: the
+        // per-tet links of the open form, and room to append to the pool.
+        let links = Some(mt.tet_links());
+        let components = mt.nb_components();
+        let mut mt = mt;
+        mt.reserve_edit_room();
         Ok(MtCutter {
             mt: Some(mt),
             scales,
@@ -369,7 +384,8 @@ impl MtCutter {
             fragment_bvh,
             fragment_bvh_slack,
             split_off,
-            links: None,
+            links,
+            components,
         })
     }
 
@@ -564,7 +580,7 @@ impl MtCutter {
             // Nothing to cut: the MT stays as it is (closing it again would cost a pass
             // over the pool for the same store).
             self.last_origins.clear();
-            stats.components = mt.nb_components();
+            stats.components = self.components;
             stats.time.query = start.elapsed().as_secs_f64();
             stats.time.total = stats.time.query;
             return Ok(stats);
@@ -1212,7 +1228,11 @@ impl MtCutter {
             .close_keeping_links()
             .unwrap_or_else(|e| panic!("the MT cut left an inconsistent store: {e}"));
         self.links = Some(links);
-        stats.components = mt.nb_components();
+        // A cut splitting no fragment keeps every arc: the components stay.
+        if stats.fragments_split > 0 {
+            self.components = mt.nb_components();
+        }
+        stats.components = self.components;
         self.mt = Some(mt);
         self.last_origins = origins;
         self.last_origins

@@ -51,6 +51,11 @@ pub struct OpenMt {
     boxes: Option<(BoxFrame, Vec<QuantBox>)>,
 }
 
+/// The room an edit of a pool of `n` elements is given to append to it: an eighth more.
+pub(crate) fn edit_room(n: usize) -> usize {
+    n / 8 + 1024
+}
+
 /// The creator and destroyer of every pool tet of an MT, in pool order: what [`Mt::open`]
 /// derives from the arcs, kept by an editor that edits the same MT again
 /// ([`OpenMt::close_keeping_links`], [`Mt::open_with`]) so that opening it costs nothing.
@@ -60,6 +65,35 @@ pub(crate) struct TetLinks {
 }
 
 impl Mt {
+    /// The creator and destroyer of every pool tet, derived from the arcs, for
+    /// [`open_with`](Self::open_with): an editor that derives them before its first edit
+    /// (when it is made) keeps that edit in proportion to its size.
+    pub(crate) fn tet_links(&self) -> TetLinks {
+        let nt = self.nb_tets();
+        // Written once, run by run, with room for the tets an edit appends (a cut appends a
+        // few per tet it splits) so appending does not copy them.
+        let room = nt + edit_room(nt);
+        let mut creator = Vec::with_capacity(room);
+        let mut destroyer = Vec::with_capacity(room);
+        for (a, c, d) in self.arcs() {
+            let n = self.arc_tets(a).len();
+            creator.extend(std::iter::repeat_n(c, n));
+            destroyer.extend(std::iter::repeat_n(d, n));
+        }
+        TetLinks { creator, destroyer }
+    }
+
+    /// Makes room in the pool for the tets and vertices an edit appends
+    /// ([`edit_room`] of each), so that the first edit does not copy the pool to a larger
+    /// one ([`OpenMt::close`] keeps the room for the next).
+    pub(crate) fn reserve_edit_room(&mut self) {
+        let (nt, nv) = (self.nb_tets(), self.nb_vertices());
+        self.tets.reserve(edit_room(nt));
+        self.cell_data.reserve(edit_room(nt));
+        self.positions.reserve(edit_room(nv));
+        self.point_data.reserve(edit_room(nv));
+    }
+
     /// The open form of this MT (per-tet creator and destroyer).
     pub fn open(self) -> OpenMt {
         self.open_with(None)
@@ -70,7 +104,7 @@ impl Mt {
     /// against the arcs in debug builds; links of another length are not used).
     pub(crate) fn open_with(self, links: Option<TetLinks>) -> OpenMt {
         let nt = self.nb_tets();
-        let (creator, destroyer) = match links {
+        let TetLinks { creator, destroyer } = match links {
             Some(l) if l.creator.len() == nt && l.destroyer.len() == nt => {
                 debug_assert!(
                     self.arcs().all(|(a, c, d)| {
@@ -80,21 +114,9 @@ impl Mt {
                     }),
                     "links kept from another MT"
                 );
-                (l.creator, l.destroyer)
+                l
             }
-            _ => {
-                // Written once, run by run, with room for the tets an edit appends (a cut
-                // appends a few per tet it splits) so appending does not copy them.
-                let room = nt + nt / 8 + 1024;
-                let mut creator = Vec::with_capacity(room);
-                let mut destroyer = Vec::with_capacity(room);
-                for (a, c, d) in self.arcs() {
-                    let n = self.arc_tets(a).len();
-                    creator.extend(std::iter::repeat_n(c, n));
-                    destroyer.extend(std::iter::repeat_n(d, n));
-                }
-                (creator, destroyer)
-            }
+            _ => self.tet_links(),
         };
         OpenMt {
             positions: self.positions,
@@ -365,6 +387,7 @@ impl OpenMt {
             error,
             info,
             known_boxes,
+            keep_room: true,
         })
         .map(|mt| (mt, links))
     }

@@ -403,5 +403,6 @@ fn parse(payload: &[u8]) -> Result<Mt, String> {
         error,
         info,
         known_boxes: None,
+        keep_room: false,
     })
 }

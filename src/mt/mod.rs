@@ -155,6 +155,8 @@ pub(crate) struct MtParts {
     pub info: MtInfo,
     /// Boxes still known from before an edit (see [`KnownBoxes`]); `None`: derive all.
     pub known_boxes: Option<KnownBoxes>,
+    /// Whether the pool keeps spare capacity (an edit's) instead of being made to fit.
+    pub keep_room: bool,
 }
 
 /// Fragment boxes an edited MT keeps: those of the fragments the edit did not touch, in
@@ -295,8 +297,17 @@ impl Mt {
         let mut p = p;
         p.arc_start.shrink_to_fit();
         p.arc_destroyer.shrink_to_fit();
-        p.tets.shrink_to_fit();
-        p.positions.shrink_to_fit();
+        // An edited pool keeps the room its edit was given (`edit::edit_room`) for the
+        // next one, which then appends there instead of copying the pool twice (to shrink
+        // it, then to grow it again: 60 MB each way for a pool of 3.8 M tets). A built or
+        // loaded MT is made to fit.
+        let keep = |len: usize, cap: usize| p.keep_room && cap <= len + 2 * edit::edit_room(len);
+        if !keep(p.tets.len(), p.tets.capacity()) {
+            p.tets.shrink_to_fit();
+        }
+        if !keep(p.positions.len(), p.positions.capacity()) {
+            p.positions.shrink_to_fit();
+        }
         p.kind.shrink_to_fit();
         p.error.shrink_to_fit();
         let preds = Csr::from_pairs(

@@ -994,6 +994,7 @@ fn freeze<E: TetError + ?Sized>(
         error,
         info,
         known_boxes: None,
+        keep_room: false,
     })
     .map_err(BuildError::Internal)
 }
