@@ -4,7 +4,9 @@
 //! cells the tables create, time to split the cells, time to update the DAG, total, and
 //! total ÷ VTK's clip (`vtkTableBasedClipDataSet`, both sides, via /usr/bin/python3 and
 //! scripts/vtk/cut_vtk_clip.py, as benches/cut_vs_vtk.rs) of the finest mesh by the same
-//! plane, in the same run. Then a linear fit of total time against input cells, one cut on
+//! plane, in the same run; and, apart, the time to make the cutter (`MtCutter::new`: the
+//! hierarchy over fragments, the open form's per-tet links, room in the pool), paid once
+//! per cutter, not per cut. Then a linear fit of total time against input cells, one cut on
 //! the fandisk-1m MT cutting about as many cells as fandisk's middle cut, and a second one
 //! continuing it on the same cutter (a blade's next step).
 //!
@@ -20,6 +22,7 @@ use mtcut::mt::{BuildOptions, Mt};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::time::Instant;
 
 const PYTHON: &str = "/usr/bin/python3";
 /// Half-sizes of the square cuts, in bounding-box diagonals (the last goes through).
@@ -48,19 +51,22 @@ fn square(origin: DVec3, normal: DVec3, r: f64) -> CutPolygon {
     .expect("a square is a valid polygon")
 }
 
-/// Median times (ms) and the statistics of one cut, each repetition on a fresh copy (cut
-/// first, untimed, by `before` when given: the cut is then the cutter's second).
+/// Median times (ms: making the cutter, then the cut's split, DAG and total) and the
+/// statistics of one cut, each repetition on a fresh copy (cut first, untimed, by `before`
+/// when given: the cut is then the cutter's second).
 fn time_cut(
     mt: &Mt,
     before: Option<&CutPolygon>,
     polygon: &CutPolygon,
     reps: usize,
-) -> Result<(MtCutStats, [f64; 3]), String> {
-    let (mut split, mut dag, mut total) = (vec![], vec![], vec![]);
+) -> Result<(MtCutStats, [f64; 4]), String> {
+    let (mut prepare, mut split, mut dag, mut total) = (vec![], vec![], vec![], vec![]);
     let mut last = None;
     for _ in 0..reps {
-        let mut c =
-            MtCutter::new(mt.clone(), MtCutter::DEFAULT_OPTIONS).map_err(|e| e.to_string())?;
+        let copy = mt.clone();
+        let start = Instant::now();
+        let mut c = MtCutter::new(copy, MtCutter::DEFAULT_OPTIONS).map_err(|e| e.to_string())?;
+        prepare.push(start.elapsed().as_secs_f64() * 1e3);
         if let Some(p) = before {
             c.cut(p).map_err(|e| e.to_string())?;
         }
@@ -71,7 +77,10 @@ fn time_cut(
         last = Some(s);
     }
     let s = last.ok_or("no repetition")?;
-    Ok((s, [median(split), median(dag), median(total)]))
+    Ok((
+        s,
+        [median(prepare), median(split), median(dag), median(total)],
+    ))
 }
 
 fn vtk_clip_ms(base: &Path, origin: DVec3, normal: DVec3, root: &Path) -> Result<f64, String> {
@@ -129,8 +138,8 @@ fn main() {
     let mut errors: Vec<String> = Vec::new();
     let mut md = String::from(
         "| mesh | cut (× diag) | fragments | input cells | created 1:17 | created tables | \
-         tables/1:17 | split ms | DAG ms | total ms | total ÷ VTK clip |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|\n",
+         tables/1:17 | split ms | DAG ms | total ms | total ÷ VTK clip | prepare ms |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     let mut points = Vec::new();
     let mut fandisk_mid: Option<(usize, f64, usize)> = None;
@@ -155,7 +164,7 @@ fn main() {
         let diag = mesh.bbox().diagonal();
         for (k, &size) in SIZES.iter().enumerate() {
             let polygon = square(origin, normal, size * diag);
-            let (s, [split, dag, total]) = match time_cut(&mt, None, &polygon, REPS) {
+            let (s, [prepare, split, dag, total]) = match time_cut(&mt, None, &polygon, REPS) {
                 Ok(x) => x,
                 Err(e) => {
                     errors.push(format!("{name} size {size}: {e}"));
@@ -165,7 +174,7 @@ fn main() {
             let ratio = s.tets_created as f64 / s.tets_created_1_17.max(1) as f64;
             md.push_str(&format!(
                 "| {name} | {size} | {} | {} | {} | {} | {ratio:.3} | {split:.1} | {dag:.1} | \
-                 {total:.1} | {:.2} |\n",
+                 {total:.1} | {:.2} | {prepare:.1} |\n",
                 s.fragments_involved,
                 s.tets_cut,
                 s.tets_created_1_17,
@@ -192,6 +201,7 @@ fn main() {
                 "total_ms": total,
                 "vtk_clip_finest_ms": vtk_ms,
                 "total_over_vtk": total / vtk_ms,
+                "prepare_ms": prepare,
                 "components_after": s.components,
                 "stats": s.to_json(),
             }));
@@ -224,10 +234,10 @@ fn main() {
                         r,
                     );
                     match time_cut(&mt, None, &polygon, 3) {
-                        Ok((s, [split, dag, total])) => {
+                        Ok((s, [prepare, split, dag, total])) => {
                             md.push_str(&format!(
                                 "| fandisk-1m | {:.4} | {} | {} | {} | {} | {:.3} | {split:.1} | \
-                                 {dag:.1} | {total:.1} | – |\n",
+                                 {dag:.1} | {total:.1} | – | {prepare:.1} |\n",
                                 SIZES[2] * shrink,
                                 s.fragments_involved,
                                 s.tets_cut,
@@ -242,6 +252,7 @@ fn main() {
                                 "split_ms": split,
                                 "dag_ms": dag,
                                 "total_ms": total,
+                                "prepare_ms": prepare,
                                 "fandisk_same_size_cells": cells,
                                 "fandisk_same_size_ms": ms,
                                 "ratio_over_fandisk": total / ms,
@@ -249,7 +260,7 @@ fn main() {
                                     (total / s.tets_cut.max(1) as f64) / (ms / cells.max(1) as f64),
                             });
                             match time_cut(&mt, Some(&polygon), &next, 3) {
-                                Ok((n, [split, dag, next_total])) => {
+                                Ok((n, [_, split, dag, next_total])) => {
                                     next_line = format!(
                                         "\nfandisk-1m, a second cut on the same cutter (the same square \
                                          moved by its width along its plane, continuing the first \
