@@ -15,6 +15,7 @@
 //! [`CutSession::resolve`] maps to the final ones; so the tets around a vertex can be
 //! classified again ([`CutSession::forget_vertices`]) before anything is committed.
 
+use super::stamps::Stamps;
 use super::tables::{NEG, ON, POS, config_index, face_points, is_crossed};
 use crate::geom::{CutPolygon, DVec3, Sign, Tolerance};
 use crate::mesh::tables::{EDGE_OF_VERTICES, TET_EDGES, TET_FACES};
@@ -89,26 +90,21 @@ const PROVISIONAL_FACE: u32 = 1 << 30;
 /// vertices near the plane that many tets share.
 #[derive(Clone, Debug, Default)]
 pub struct StateCache {
-    epoch: u32,
-    stamp: Vec<u32>,
+    stamps: Stamps,
     state: Vec<u8>,
 }
 
 impl StateCache {
     /// Starts a new cut over a pool of `n_vertices`.
     pub fn begin(&mut self, n_vertices: usize) {
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.stamp.iter_mut().for_each(|s| *s = 0);
-            self.epoch = 1;
-        }
+        self.stamps.begin();
         self.reserve(n_vertices);
     }
 
     /// Makes room for `n_vertices` (done ahead, the first cut does not pay for it).
     pub fn reserve(&mut self, n_vertices: usize) {
-        if self.stamp.len() < n_vertices {
-            self.stamp.resize(n_vertices, 0);
+        if self.stamps.len() < n_vertices {
+            self.stamps.resize(n_vertices);
             self.state.resize(n_vertices, 0);
         }
     }
@@ -117,8 +113,7 @@ impl StateCache {
     #[inline]
     pub fn get(&mut self, v: VertexId, f: impl FnOnce() -> u8) -> u8 {
         let i = v.idx();
-        if self.stamp[i] != self.epoch {
-            self.stamp[i] = self.epoch;
+        if self.stamps.mark(i) {
             self.state[i] = f();
         }
         self.state[i]
@@ -172,8 +167,7 @@ impl CrackTips {
 /// or MT that is cut, grown as vertices are added.
 #[derive(Clone, Debug, Default)]
 pub struct CutScratch {
-    epoch: u32,
-    stamp: Vec<u32>,
+    stamps: Stamps,
     edge_head: Vec<u32>,
     face_head: Vec<u32>,
 }
@@ -183,21 +177,15 @@ impl CutScratch {
         CutScratch::default()
     }
 
-    fn begin(&mut self, n_vertices: usize) -> u32 {
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            // Wrapped after 4 billion cuts: old stamps could collide, start afresh.
-            self.stamp.iter_mut().for_each(|s| *s = 0);
-            self.epoch = 1;
-        }
+    fn begin(&mut self, n_vertices: usize) {
+        self.stamps.begin();
         self.reserve(n_vertices);
-        self.epoch
     }
 
     /// Makes room for `n_vertices` (done ahead, the first cut does not pay for it).
     pub(crate) fn reserve(&mut self, n_vertices: usize) {
-        if self.stamp.len() < n_vertices {
-            self.stamp.resize(n_vertices, 0);
+        if self.stamps.len() < n_vertices {
+            self.stamps.resize(n_vertices);
             self.edge_head.resize(n_vertices, NONE);
             self.face_head.resize(n_vertices, NONE);
         }
@@ -491,7 +479,6 @@ pub struct CutSession<'a> {
     pub(crate) snap: Tolerance,
     face_margin: f64,
     scratch: &'a mut CutScratch,
-    epoch: u32,
     pub(crate) edges: Vec<EdgeRec>,
     pub(crate) faces: Vec<FaceRec>,
     /// Records not yet classified / allocated.
@@ -513,13 +500,12 @@ impl<'a> CutSession<'a> {
         scratch: &'a mut CutScratch,
         n_vertices: usize,
     ) -> CutSession<'a> {
-        let epoch = scratch.begin(n_vertices);
+        scratch.begin(n_vertices);
         CutSession {
             polygon,
             snap,
             face_margin,
             scratch,
-            epoch,
             edges: Vec::new(),
             faces: Vec::new(),
             edges_classified: 0,
@@ -537,8 +523,7 @@ impl<'a> CutSession<'a> {
 
     fn head(&mut self, v: VertexId, face: bool) -> &mut u32 {
         let i = v.idx();
-        if self.scratch.stamp[i] != self.epoch {
-            self.scratch.stamp[i] = self.epoch;
+        if self.scratch.stamps.mark(i) {
             self.scratch.edge_head[i] = NONE;
             self.scratch.face_head[i] = NONE;
         }

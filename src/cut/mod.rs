@@ -92,6 +92,7 @@ pub mod report;
 pub mod roi;
 pub mod scalpel;
 pub mod split;
+mod stamps;
 pub mod table_gen;
 pub mod tables;
 pub mod unglue;

@@ -147,6 +147,7 @@ use super::classify::{VertexOrigin, origin_positions};
 use super::cutter::{push_origin_rows, unsnap, with_twins};
 use super::options::{CutError, CutOptions};
 use super::split::{Children, split_tet};
+use super::stamps::Stamps;
 use super::tables::{NEG, ON, POS, Side};
 use super::unglue::{StarEntry, plan_copies};
 use crate::geom::{Aabb, CutPolygon, DVec3};
@@ -1048,8 +1049,7 @@ impl MtCutter {
             let vertices = open.positions.len();
             let pieces = pieces.get_or_insert_with(|| Pieces {
                 first: vec![0; vertices],
-                stamp: vec![0; vertices],
-                epoch: 0,
+                stamps: Stamps::sized(vertices),
                 parent: Vec::new(),
             });
             if pieces.one_piece(&open.tets, made.iter()) {
@@ -1259,8 +1259,7 @@ fn cracked_fragments(mt: &Mt) -> Vec<bool> {
         .map_init(
             || Pieces {
                 first: vec![0; nv],
-                stamp: vec![0; nv],
-                epoch: 0,
+                stamps: Stamps::sized(nv),
                 parent: Vec::new(),
             },
             |pieces, f| {
@@ -1301,22 +1300,17 @@ impl Spans {
 }
 
 /// Scratch of [`cracked_fragments`] and of the whole-root test: per vertex, the first tet
-/// of the current list holding it (valid where `stamp` is the current epoch).
+/// of the current list holding it (valid where marked in the current pass).
 struct Pieces {
     first: Vec<u32>,
-    stamp: Vec<u32>,
-    epoch: u32,
+    stamps: Stamps,
     parent: Vec<u32>,
 }
 
 impl Pieces {
     /// Whether the tets `list` are joined into one piece through shared vertices.
     fn one_piece<'a>(&mut self, tets: &[Tet], list: impl Iterator<Item = &'a u32>) -> bool {
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.stamp.fill(0);
-            self.epoch = 1;
-        }
+        self.stamps.begin();
         self.parent.clear();
         let mut pieces = 0u32;
         for &t in list {
@@ -1324,8 +1318,7 @@ impl Pieces {
             self.parent.push(i);
             pieces += 1;
             for &v in tets[t as usize].iter().filter(|v| **v != GHOST) {
-                if self.stamp[v.idx()] != self.epoch {
-                    self.stamp[v.idx()] = self.epoch;
+                if self.stamps.mark(v.idx()) {
                     self.first[v.idx()] = i;
                 } else {
                     let (x, y) = (

@@ -28,6 +28,7 @@
 //! listed, bit sets instead of hashing), and falls back to the children when it cannot
 //! tell; in debug builds every decision is checked against the children's.
 
+use super::stamps::Stamps;
 use super::tables::{
     NB_CONFIGS, NEG, ON, POS, SIDE_NEGATIVE, SIDE_POSITIVE, Side, config_of_index, entry,
 };
@@ -257,9 +258,8 @@ fn side_bit(state: u8) -> u8 {
 /// cleared).
 #[derive(Clone, Debug)]
 pub struct LinkSlots {
-    stamp: Vec<u32>,
+    stamps: Stamps,
     index: Vec<u8>,
-    epoch: u32,
     /// Link edges met once, twice, and the joins of [`plan_by_parents`].
     adj: [u64; 64],
     adj2: [u64; 64],
@@ -272,9 +272,8 @@ pub struct LinkSlots {
 impl Default for LinkSlots {
     fn default() -> Self {
         LinkSlots {
-            stamp: Vec::new(),
+            stamps: Stamps::default(),
             index: Vec::new(),
-            epoch: 0,
             adj: [0; 64],
             adj2: [0; 64],
             join: [0; 64],
@@ -286,18 +285,14 @@ impl Default for LinkSlots {
 impl LinkSlots {
     /// Starts a new link over a mesh of `n_vertices`.
     fn begin(&mut self, n_vertices: usize) {
-        self.epoch = self.epoch.wrapping_add(1);
-        if self.epoch == 0 {
-            self.stamp.iter_mut().for_each(|s| *s = 0);
-            self.epoch = 1;
-        }
+        self.stamps.begin();
         self.reserve(n_vertices);
     }
 
     /// Makes room for `n_vertices` (done ahead, the first cut does not pay for it).
     pub fn reserve(&mut self, n_vertices: usize) {
-        if self.stamp.len() < n_vertices {
-            self.stamp.resize(n_vertices, 0);
+        if self.stamps.len() < n_vertices {
+            self.stamps.resize(n_vertices);
             self.index.resize(n_vertices, 0);
         }
     }
@@ -307,11 +302,11 @@ impl LinkSlots {
     #[inline]
     fn get(&mut self, v: VertexId, m: &mut usize) -> Option<usize> {
         let i = v.idx();
-        if self.stamp[i] != self.epoch {
+        if !self.stamps.is_marked(i) {
             if *m == 64 {
                 return None;
             }
-            self.stamp[i] = self.epoch;
+            self.stamps.mark(i);
             self.index[i] = *m as u8;
             self.adj[*m] = 0;
             self.adj2[*m] = 0;
@@ -653,8 +648,7 @@ fn regularity(config: usize) -> (u8, u8) {
 struct FaceTable {
     keys: Vec<u64>,
     values: Vec<u32>,
-    stamps: Vec<u32>,
-    generation: u32,
+    stamps: Stamps,
     mask: usize,
 }
 
@@ -664,15 +658,9 @@ impl FaceTable {
         if size > self.keys.len() {
             self.keys.resize(size, 0);
             self.values.resize(size, 0);
-            self.stamps.clear();
-            self.stamps.resize(size, 0);
-            self.generation = 0;
+            self.stamps.resize(size);
         }
-        self.generation = self.generation.wrapping_add(1);
-        if self.generation == 0 {
-            self.stamps.iter_mut().for_each(|s| *s = 0);
-            self.generation = 1;
-        }
+        self.stamps.begin();
         self.mask = size - 1;
     }
 
@@ -681,8 +669,7 @@ impl FaceTable {
     fn insert(&mut self, key: u64, value: u32) -> Option<u32> {
         let mut i = (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 40) as usize & self.mask;
         loop {
-            if self.stamps[i] != self.generation {
-                self.stamps[i] = self.generation;
+            if self.stamps.mark(i) {
                 self.keys[i] = key;
                 self.values[i] = value;
                 return None;
