@@ -1046,13 +1046,8 @@ impl MtCutter {
                 .copied()
                 .filter(|&t| open.creator[t as usize] == r)
                 .collect();
-            let vertices = open.positions.len();
-            let pieces = pieces.get_or_insert_with(|| Pieces {
-                first: vec![0; vertices],
-                stamps: Stamps::sized(vertices),
-                parent: Vec::new(),
-            });
-            if pieces.one_piece(&open.tets, made.iter()) {
+            let pieces = pieces.get_or_insert_with(|| Pieces::new(open.positions.len()));
+            if pieces.one_piece(&open.tets, made.iter().copied()) {
                 involved[r.idx()] = false;
                 whole_roots += 1;
                 debug_assert!(
@@ -1257,18 +1252,20 @@ fn cracked_fragments(mt: &Mt) -> Vec<bool> {
         .into_par_iter()
         .with_min_len(min_len)
         .map_init(
-            || Pieces {
-                first: vec![0; nv],
-                stamps: Stamps::sized(nv),
-                parent: Vec::new(),
-            },
-            |pieces, f| {
+            || (Pieces::new(nv), Vec::new()),
+            |(pieces, arcs), f| {
                 let f = FragmentId::from_usize(f);
-                let floor: Vec<u32> = mt.destroyed_tets(f).map(|t| t.0).collect();
-                let ceiling: Vec<u32> = mt.created_tets(f).map(|t| t.0).collect();
-                if pieces.one_piece(tets, floor.iter().chain(&ceiling)) {
+                // The floor's and the ceiling's arcs, found once (an in-arc is a search
+                // among its creator's arcs), their tets read in place: most fragments are
+                // one piece, and are done without collecting anything.
+                arcs.clear();
+                arcs.extend(mt.in_arcs(f).chain(mt.out_arcs(f)));
+                let list = arcs.iter().flat_map(|&a| mt.arc_tets(a as usize));
+                if pieces.one_piece(tets, list.map(|t| t as u32)) {
                     return false;
                 }
+                let floor: Vec<u32> = mt.destroyed_tets(f).map(|t| t.0).collect();
+                let ceiling: Vec<u32> = mt.created_tets(f).map(|t| t.0).collect();
                 let parts = split_fragment(tets, mt.positions(), &floor, &ceiling);
                 parts.iter().any(|&p| p > 0)
             },
@@ -1308,12 +1305,23 @@ struct Pieces {
 }
 
 impl Pieces {
+    /// Scratch for lists of tets over a pool of `vertices` vertices.
+    fn new(vertices: usize) -> Pieces {
+        let mut stamps = Stamps::default();
+        stamps.resize(vertices);
+        Pieces {
+            first: vec![0; vertices],
+            stamps,
+            parent: Vec::new(),
+        }
+    }
+
     /// Whether the tets `list` are joined into one piece through shared vertices.
-    fn one_piece<'a>(&mut self, tets: &[Tet], list: impl Iterator<Item = &'a u32>) -> bool {
+    fn one_piece(&mut self, tets: &[Tet], list: impl Iterator<Item = u32>) -> bool {
         self.stamps.begin();
         self.parent.clear();
         let mut pieces = 0u32;
-        for &t in list {
+        for t in list {
             let i = self.parent.len() as u32;
             self.parent.push(i);
             pieces += 1;

@@ -20,14 +20,6 @@ impl Stamps {
         }
     }
 
-    /// Stamps for `n` indices, none marked.
-    pub fn sized(n: usize) -> Stamps {
-        Stamps {
-            epoch: 0,
-            stamp: vec![0; n],
-        }
-    }
-
     /// How many indices can be marked.
     pub fn len(&self) -> usize {
         self.stamp.len()
