@@ -4,9 +4,9 @@
 //! cells the tables create, time to split the cells, time to update the DAG, total, and
 //! total ÷ VTK's clip (`vtkTableBasedClipDataSet`, both sides, via /usr/bin/python3 and
 //! scripts/vtk/cut_vtk_clip.py, as benches/cut_vs_vtk.rs) of the finest mesh by the same
-//! plane, in the same run; and, apart, the time to make the cutter (`MtCutter::new`: the
-//! hierarchy over fragments, the open form's per-tet links, room in the pool), paid once
-//! per cutter, not per cut. Then a linear fit of total time against input cells, one cut on
+//! plane, in the same run; and, apart, the time to make the cutter (`MtCutter::new`: vertex
+//! scales, the fragments earlier cuts left cracked, the hierarchy over fragments, the open
+//! form's per-tet links, room in the pool), paid once per cutter, not per cut. Then a linear fit of total time against input cells, one cut on
 //! the fandisk-1m MT cutting about as many cells as fandisk's middle cut, and a second one
 //! continuing it on the same cutter (a blade's next step).
 //!
