@@ -154,7 +154,7 @@ use crate::geom::{Aabb, CutPolygon, DVec3};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::{TET_EDGES, TET_FACES, flip_face, oriented_face};
 use crate::mesh::{FragmentId, Tet, TetId, VertexId};
-use crate::mt::{FragmentBvh, FragmentKind, GHOST, Mt, OpenMt, TetLinks};
+use crate::mt::{FragmentBvh, FragmentKind, GHOST, KnownDag, Mt, OpenMt, TetLinks};
 use std::collections::{HashMap, HashSet};
 use std::time::Instant;
 
@@ -874,7 +874,6 @@ impl MtCutter {
         }
 
         // Commit: from here on the MT changes.
-        let dag = Reach::new(mt);
         // The floor and ceiling of every fragment the DAG update may involve (creators and
         // destroyers of the candidates and ghosts, and the cracked fragments), as ranges
         // of the pool before the cut: a tet replaced in place keeps its index and its arc,
@@ -900,6 +899,13 @@ impl MtCutter {
             .take()
             .expect("MtCutter holds its MT")
             .open_with(self.links.take());
+        // The DAG as it was before the cut, read in step 3 and given back before closing
+        // (unchanged unless fragments split: then the closed MT derives it again).
+        let dag = Reach {
+            dag: open
+                .take_dag()
+                .expect("an MT opened by open_with keeps its DAG tables"),
+        };
         let new_positions = origin_positions(&open.positions, &origins);
         open.positions.extend(new_positions);
         push_origin_rows(&mut open.point_data, &mut self.scales, &origins);
@@ -1078,7 +1084,7 @@ impl MtCutter {
         // Bodies: the fragments, and the parts below, joined through the tets between them
         // (the arcs). Between fragments not involved, the arcs before the cut still hold.
         let mut body: Vec<u32> = (0..nf as u32).collect();
-        for f in 0..dag.level.len() {
+        for f in 0..dag.dag.level.len() {
             if !involved[f] {
                 for g in dag.succ(f).filter(|&g| !involved[g as usize]) {
                     union(&mut body, f as u32, g);
@@ -1219,6 +1225,7 @@ impl MtCutter {
         // sub-triangles; crack ghosts lie inside): only a fragment that gave tets to the
         // fragments split off it has a new box (and those, added, get theirs).
         open.changed_fragments = Some(split.iter().map(|f| f.0).collect());
+        open.restore_dag(dag.dag);
         let (mt, links) = open
             .close_keeping_links()
             .unwrap_or_else(|e| panic!("the MT cut left an inconsistent store: {e}"));
@@ -1347,25 +1354,15 @@ impl Pieces {
 /// "Is fragment `b` a successor of `a` (or `a` itself)?" over the DAG before the cut: a
 /// depth-first search from `a` pruned by levels (a successor has a larger level).
 struct Reach {
-    level: Vec<u32>,
-    /// The successors of `f`: `dest[out_start[f]..out_start[f + 1]]` (each once: an MT
-    /// has one arc per pair of fragments).
-    out_start: Vec<u32>,
-    dest: Vec<FragmentId>,
+    /// Successors of `f`: `arc_destroyer[out_start[f]..out_start[f + 1]]` (each once: an
+    /// MT has one arc per pair of fragments); levels bound the searches.
+    dag: KnownDag,
 }
 
 impl Reach {
-    fn new(mt: &Mt) -> Reach {
-        let (out_start, dest, level) = mt.dag_tables();
-        Reach {
-            level,
-            out_start,
-            dest,
-        }
-    }
-
     fn succ(&self, f: usize) -> impl Iterator<Item = u32> + '_ {
-        self.dest[self.out_start[f] as usize..self.out_start[f + 1] as usize]
+        let d = &self.dag;
+        d.arc_destroyer[d.out_start[f] as usize..d.out_start[f + 1] as usize]
             .iter()
             .map(|g| g.0)
     }
@@ -1374,7 +1371,8 @@ impl Reach {
         if a == b {
             return true;
         }
-        let target = self.level[b.idx()];
+        let level = &self.dag.level;
+        let target = level[b.idx()];
         let mut seen: HashSet<u32, FxBuild> = HashSet::default();
         let mut stack = vec![a.0];
         while let Some(f) = stack.pop() {
@@ -1382,7 +1380,7 @@ impl Reach {
                 if g == b.0 {
                     return true;
                 }
-                if self.level[g as usize] < target && seen.insert(g) {
+                if level[g as usize] < target && seen.insert(g) {
                     stack.push(g);
                 }
             }

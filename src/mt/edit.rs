@@ -5,20 +5,24 @@
 //! contiguous arcs: tets can then be replaced in place, appended, and relabelled freely
 //! (the paper's expanded arcs, §3). [`OpenMt::close`] sorts the pool back into arcs and
 //! assembles the MT, deriving levels, boxes and arc lists with the same code as a build or
-//! a load, so an edit cannot leave them inconsistent. Two exceptions keep the cost of a
+//! a load, so an edit cannot leave them inconsistent. Three exceptions keep the cost of a
 //! small edit of a large MT near the size of the edit: the sort is a merge in place when
-//! little moved (its result does not depend on the editor's hint), and an editor that
-//! lists the fragments whose box it may have changed ([`OpenMt::changed_fragments`]) keeps
-//! the others' boxes (the cut does; `Mt::validate` checks every box). Appended vertices and
+//! little moved (its result does not depend on the editor's hint); an editor that lists
+//! the fragments whose box it may have changed ([`OpenMt::changed_fragments`]) keeps the
+//! others' boxes (the cut does; `Mt::validate` checks every box); and when the arcs come
+//! back joining the same fragments as when opened (an edit that only adds tets to arcs),
+//! the predecessor lists and levels are the opened MT's (`Mt::validate` derives levels
+//! again and compares). Appended vertices and
 //! tets need attribute rows; the editor pushes them (interpolated for vertices, inherited
 //! for tets, zeros for ghosts).
 //!
 //! This module knows nothing of cuts: the cut layer (`crate::cut::mt`) decides what to
 //! change.
 
-use super::{BoxFrame, FragmentKind, GHOST, KnownBoxes, Mt, MtInfo, MtParts, QuantBox};
+use super::{BoxFrame, FragmentKind, GHOST, KnownBoxes, KnownDag, Mt, MtInfo, MtParts, QuantBox};
 use crate::geom::DVec3;
 use crate::mesh::{Attributes, FragmentId, Tet, TetId, VertexId};
+use rayon::prelude::*;
 
 /// An MT opened for editing (see the [module docs](self)).
 #[derive(Clone, Debug)]
@@ -49,6 +53,8 @@ pub struct OpenMt {
     pub changed_fragments: Option<Vec<u32>>,
     /// The fragment boxes when opened.
     boxes: Option<(BoxFrame, Vec<QuantBox>)>,
+    /// The DAG tables when opened (kept if the arcs come back the same).
+    dag: Option<KnownDag>,
 }
 
 /// The room an edit of a pool of `n` elements is given to append to it: an eighth more.
@@ -132,6 +138,12 @@ impl Mt {
             relabelled: Vec::new(),
             changed_fragments: None,
             boxes: Some((self.frame, self.bbox)),
+            dag: Some(KnownDag {
+                out_start: self.out_start,
+                arc_destroyer: self.arc_destroyer,
+                preds: self.preds,
+                level: self.level,
+            }),
         }
     }
 
@@ -256,6 +268,7 @@ impl Mt {
             relabelled: Vec::new(),
             changed_fragments: None,
             boxes: None,
+            dag: None,
         };
         for &t in keep_t {
             let t = TetId::from_usize(t);
@@ -270,6 +283,18 @@ impl Mt {
 }
 
 impl OpenMt {
+    /// The DAG tables of the MT this was opened from (successors by `out_start` and
+    /// `arc_destroyer`, levels), lent to an editor that reads the DAG as it was before the
+    /// edit; [`restore_dag`](Self::restore_dag) gives them back for [`close`](Self::close)
+    /// to reuse (else they are derived again). `None` for an MT not opened from one.
+    pub(crate) fn take_dag(&mut self) -> Option<KnownDag> {
+        self.dag.take()
+    }
+
+    pub(crate) fn restore_dag(&mut self, dag: KnownDag) {
+        self.dag = Some(dag);
+    }
+
     /// Sorts the pool into arcs (by creator, then destroyer, then current position: stable)
     /// and assembles the MT. An edit of a small part of an opened MT is reordered in place
     /// (see `Merge`; `relabelled` makes it apply, and cannot change the result). Errors say
@@ -289,15 +314,8 @@ impl OpenMt {
                 self.destroyer.len()
             ));
         }
-        let nf = self.kind.len();
-        if let Some(t) =
-            (0..nt).find(|&t| self.creator[t].idx() >= nf || self.destroyer[t].idx() >= nf)
-        {
-            return Err(format!(
-                "tet {t} joins fragments {} and {}, but there are {nf}",
-                self.creator[t], self.destroyer[t]
-            ));
-        }
+        // Fragment ids out of range are found per arc by `Mt::assemble` (every tet's
+        // creator and destroyer make an arc): sorting does not index with them.
         if let Some(c) = self.cell_data.mismatched(nt) {
             return Err(format!(
                 "{nt} tets with {} values of cell data {:?} in {} components",
@@ -331,13 +349,22 @@ impl OpenMt {
         );
         let (tets, cell_data, creator, destroyer) = match merge {
             Some(m) => {
-                // Most of the pool is in place: reorder in place.
-                m.apply(&mut this.tets, 1);
-                for c in this.cell_data.iter_mut() {
-                    m.apply(&mut c.values, c.components);
-                }
-                m.apply(&mut this.creator, 1);
-                m.apply(&mut this.destroyer, 1);
+                // Most of the pool is in place: reorder in place, the columns on both cores
+                // (each is a pass over memory).
+                let (tets, creator, destroyer) =
+                    (&mut this.tets, &mut this.creator, &mut this.destroyer);
+                rayon::join(
+                    || {
+                        m.apply(tets, 1);
+                        for c in this.cell_data.iter_mut() {
+                            m.apply(&mut c.values, c.components);
+                        }
+                    },
+                    || {
+                        m.apply(creator, 1);
+                        m.apply(destroyer, 1);
+                    },
+                );
                 (this.tets, this.cell_data, this.creator, this.destroyer)
             }
             None => {
@@ -353,18 +380,20 @@ impl OpenMt {
                 )
             }
         };
-        let mut arc_start = Vec::new();
-        let mut arc_creator = Vec::new();
-        let mut arc_destroyer = Vec::new();
-        let mut prev = (FragmentId(u32::MAX), FragmentId(u32::MAX));
-        for (t, (&c, &d)) in creator.iter().zip(&destroyer).enumerate() {
-            if (c, d) != prev {
-                arc_start.push(t as u32);
-                arc_creator.push(c);
-                arc_destroyer.push(d);
-                prev = (c, d);
-            }
-        }
+        // An arc starts where a tet's (creator, destroyer) differs from the one before it:
+        // found in blocks on both cores (a pass over every tet of the pool).
+        let mut arc_start: Vec<u32> = (0..nt)
+            .into_par_iter()
+            .with_min_len(1 << 14)
+            .filter(|&t| t == 0 || (creator[t], destroyer[t]) != (creator[t - 1], destroyer[t - 1]))
+            .map(|t| t as u32)
+            .collect();
+        let arc_creator: Vec<FragmentId> =
+            arc_start.par_iter().map(|&t| creator[t as usize]).collect();
+        let arc_destroyer: Vec<FragmentId> = arc_start
+            .par_iter()
+            .map(|&t| destroyer[t as usize])
+            .collect();
         arc_start.push(nt as u32);
         let OpenMt {
             positions,
@@ -372,6 +401,7 @@ impl OpenMt {
             kind,
             error,
             info,
+            dag,
             ..
         } = this;
         let links = TetLinks { creator, destroyer };
@@ -388,6 +418,7 @@ impl OpenMt {
             info,
             known_boxes,
             keep_room: true,
+            known_dag: dag,
         })
         .map(|mt| (mt, links))
     }

@@ -157,6 +157,19 @@ pub(crate) struct MtParts {
     pub known_boxes: Option<KnownBoxes>,
     /// Whether the pool keeps spare capacity (an edit's) instead of being made to fit.
     pub keep_room: bool,
+    /// The DAG tables of the MT an edit opened, reused when the arcs are the same pairs.
+    pub known_dag: Option<KnownDag>,
+}
+
+/// The derived DAG tables of an MT opened for editing ([`edit::OpenMt`]): when the edit
+/// leaves every arc joining the same fragments (a cut that splits none only adds tets to
+/// arcs), predecessors and levels are these, not derived again over the whole DAG.
+#[derive(Clone, Debug)]
+pub(crate) struct KnownDag {
+    pub out_start: Vec<u32>,
+    pub arc_destroyer: Vec<FragmentId>,
+    pub preds: Csr,
+    pub level: Vec<u32>,
 }
 
 /// Fragment boxes an edited MT keeps: those of the fragments the edit did not touch, in
@@ -250,13 +263,8 @@ impl Mt {
                 return Err(format!("arc {a} goes from fragment {c} to itself"));
             }
         }
-        for (t, tet) in p.tets.iter().enumerate() {
-            for (k, v) in tet.iter().enumerate() {
-                let ok = v.idx() < nv || (*v == GHOST && k == 3);
-                if !ok {
-                    return Err(format!("tet {t} uses vertex {v}, but the pool has {nv}"));
-                }
-            }
+        if let Some((t, v)) = first_bad_vertex(&p.tets, nv) {
+            return Err(format!("tet {t} uses vertex {v}, but the pool has {nv}"));
         }
         if let Some(c) = p.point_data.mismatched(nv) {
             return Err(format!(
@@ -310,10 +318,22 @@ impl Mt {
         }
         p.kind.shrink_to_fit();
         p.error.shrink_to_fit();
-        let preds = Csr::from_pairs(
-            nf,
-            (0..na).map(|a| (p.arc_destroyer[a].0, p.arc_creator[a].0)),
-        );
+        // The same arcs (same creators by `out_start`, same destroyers) as the MT an edit
+        // opened: the same DAG, so the same predecessors and levels.
+        let same_dag = p
+            .known_dag
+            .take()
+            .filter(|k| k.out_start == out_start && k.arc_destroyer == p.arc_destroyer);
+        let (preds, known_level) = match same_dag {
+            Some(k) => (k.preds, Some(k.level)),
+            None => (
+                Csr::from_pairs(
+                    nf,
+                    (0..na).map(|a| (p.arc_destroyer[a].0, p.arc_creator[a].0)),
+                ),
+                None,
+            ),
+        };
         for f in 0..nf {
             let e = p.error[f];
             match p.kind[f] {
@@ -334,12 +354,15 @@ impl Mt {
         }
         // Successors straight from the arcs (sorted by creator, each pair once), where the
         // predecessor lists came from: no second table to build.
-        let level = levels_with(nf, &preds, |f| {
-            p.arc_destroyer[out_start[f] as usize..out_start[f + 1] as usize]
-                .iter()
-                .map(|d| d.0)
-        })
-        .ok_or_else(|| "the DAG has a cycle".to_string())?;
+        let level = match known_level {
+            Some(level) => level,
+            None => levels_with(nf, &preds, |f| {
+                p.arc_destroyer[out_start[f] as usize..out_start[f + 1] as usize]
+                    .iter()
+                    .map(|d| d.0)
+            })
+            .ok_or_else(|| "the DAG has a cycle".to_string())?,
+        };
         let arc_box = |a: u32| {
             let a = a as usize;
             let mut b = Aabb::EMPTY;
@@ -547,14 +570,6 @@ impl Mt {
     /// `out_start[f]..out_start[f + 1]`), each arc's destroyer, and each fragment's level;
     /// copies, for an editor that consumes the MT and still asks about the DAG before
     /// the edit.
-    pub(crate) fn dag_tables(&self) -> (Vec<u32>, Vec<FragmentId>, Vec<u32>) {
-        (
-            self.out_start.clone(),
-            self.arc_destroyer.clone(),
-            self.level.clone(),
-        )
-    }
-
     /// The fragments `f` depends on: the creators of its in-arcs, one per arc, sorted.
     #[inline]
     pub fn predecessors(&self, f: FragmentId) -> ArcList<'_> {
@@ -811,6 +826,27 @@ fn levels(nf: usize, preds: &Csr) -> Option<Vec<u32>> {
 
 /// [`levels`] with the successors of each fragment given (each once, as many as the
 /// fragments it appears in the predecessor lists of).
+/// The first tet (and its vertex) that names no vertex of a pool of `nv` (a ghost's fourth
+/// vertex excepted). A pass over every tet of the pool each time an MT is assembled: in
+/// blocks on both cores, each block checked without a branch per vertex.
+fn first_bad_vertex(tets: &[Tet], nv: usize) -> Option<(usize, VertexId)> {
+    const BLOCK: usize = 1 << 14;
+    let n = nv as u64;
+    let bad = |t: &Tet| {
+        (t[0].0 as u64 >= n)
+            | (t[1].0 as u64 >= n)
+            | (t[2].0 as u64 >= n)
+            | ((t[3].0 as u64 >= n) & (t[3] != GHOST))
+    };
+    let block = tets
+        .par_chunks(BLOCK)
+        .position_first(|b| b.iter().fold(false, |acc, t| acc | bad(t)))?;
+    let t = block * BLOCK + tets[block * BLOCK..].iter().position(bad)?;
+    let tet = tets[t];
+    let k = (0..4).find(|&k| !(tet[k].idx() < nv || (tet[k] == GHOST && k == 3)))?;
+    Some((t, tet[k]))
+}
+
 fn levels_with<I: IntoIterator<Item = u32>>(
     nf: usize,
     preds: &Csr,
