@@ -1234,6 +1234,11 @@ impl MtCutter {
         if stats.fragments_split > 0 {
             self.components = mt.nb_components();
         }
+        debug_assert_eq!(
+            self.components,
+            mt.nb_components(),
+            "the components counted before a cut that split no fragment changed"
+        );
         stats.components = self.components;
         self.mt = Some(mt);
         self.last_origins = origins;
