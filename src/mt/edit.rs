@@ -12,7 +12,9 @@
 //! others' boxes (the cut does; `Mt::validate` checks every box); and when the arcs come
 //! back joining the same fragments as when opened (an edit that only adds tets to arcs),
 //! the predecessor lists and levels are the opened MT's (`Mt::validate` derives levels
-//! again and compares). Appended vertices and
+//! again and compares) and the arcs' ranges are updated from the moved tets alone, then
+//! checked against every tet (a read-only pass: the result still does not depend on the
+//! hint). Appended vertices and
 //! tets need attribute rows; the editor pushes them (interpolated for vertices, inherited
 //! for tets, zeros for ghosts).
 //!
@@ -55,6 +57,9 @@ pub struct OpenMt {
     boxes: Option<(BoxFrame, Vec<QuantBox>)>,
     /// The DAG tables when opened (kept if the arcs come back the same).
     dag: Option<KnownDag>,
+    /// The arcs' tet ranges when opened (`arc_start`), updated in place by a close that
+    /// keeps the arcs.
+    opened_arcs: Option<Vec<u32>>,
 }
 
 /// The room an edit of a pool of `n` elements is given to append to it: an eighth more.
@@ -144,6 +149,7 @@ impl Mt {
                 preds: self.preds,
                 level: self.level,
             }),
+            opened_arcs: Some(self.arc_start),
         }
     }
 
@@ -269,6 +275,7 @@ impl Mt {
             changed_fragments: None,
             boxes: None,
             dag: None,
+            opened_arcs: None,
         };
         for &t in keep_t {
             let t = TetId::from_usize(t);
@@ -347,6 +354,18 @@ impl OpenMt {
             this.opened_sorted,
             &this.relabelled,
         );
+        // Every moved tet joining an arc the opened MT had, none emptied: the same arcs,
+        // their ranges updated from the moved tets alone (checked below).
+        let kept_starts = match (&merge, &this.dag, this.opened_arcs.take()) {
+            (Some(m), Some(dag), Some(starts)) => m.kept_arcs(
+                &this.creator,
+                &this.destroyer,
+                this.opened_sorted,
+                dag,
+                starts,
+            ),
+            _ => None,
+        };
         let (tets, cell_data, creator, destroyer) = match merge {
             Some(m) => {
                 // Most of the pool is in place: reorder in place, the columns on both cores
@@ -380,21 +399,21 @@ impl OpenMt {
                 )
             }
         };
-        // An arc starts where a tet's (creator, destroyer) differs from the one before it:
-        // found in blocks on both cores (a pass over every tet of the pool).
-        let mut arc_start: Vec<u32> = (0..nt)
-            .into_par_iter()
-            .with_min_len(1 << 14)
-            .filter(|&t| t == 0 || (creator[t], destroyer[t]) != (creator[t - 1], destroyer[t - 1]))
-            .map(|t| t as u32)
-            .collect();
-        let arc_creator: Vec<FragmentId> =
-            arc_start.par_iter().map(|&t| creator[t as usize]).collect();
-        let arc_destroyer: Vec<FragmentId> = arc_start
-            .par_iter()
-            .map(|&t| destroyer[t as usize])
-            .collect();
-        arc_start.push(nt as u32);
+        let kept_starts = kept_starts.filter(|starts| {
+            let dag = this.dag.as_ref().expect("kept arcs come with their DAG");
+            arcs_hold(starts, dag, &creator, &destroyer)
+        });
+        debug_assert!(
+            kept_starts
+                .as_ref()
+                .is_none_or(|s| *s == arcs_of(&creator, &destroyer).0),
+            "arc ranges updated from the moved tets differ from the pool's"
+        );
+        let arcs_kept = kept_starts.is_some();
+        let (arc_start, arc_creator, arc_destroyer) = match kept_starts {
+            Some(starts) => (starts, Vec::new(), Vec::new()),
+            None => arcs_of(&creator, &destroyer),
+        };
         let OpenMt {
             positions,
             point_data,
@@ -419,9 +438,59 @@ impl OpenMt {
             known_boxes,
             keep_room: true,
             known_dag: dag,
+            arcs_kept,
         })
         .map(|mt| (mt, links))
     }
+}
+
+/// The arcs of a pool in arc order, as (starts with one extra entry, creators,
+/// destroyers): an arc starts where a tet's (creator, destroyer) differs from the one
+/// before it. Found in blocks on both cores (a pass over every tet of the pool).
+fn arcs_of(
+    creator: &[FragmentId],
+    destroyer: &[FragmentId],
+) -> (Vec<u32>, Vec<FragmentId>, Vec<FragmentId>) {
+    let nt = creator.len();
+    let mut arc_start: Vec<u32> = (0..nt)
+        .into_par_iter()
+        .with_min_len(1 << 14)
+        .filter(|&t| t == 0 || (creator[t], destroyer[t]) != (creator[t - 1], destroyer[t - 1]))
+        .map(|t| t as u32)
+        .collect();
+    let arc_creator: Vec<FragmentId> = arc_start.par_iter().map(|&t| creator[t as usize]).collect();
+    let arc_destroyer: Vec<FragmentId> = arc_start
+        .par_iter()
+        .map(|&t| destroyer[t as usize])
+        .collect();
+    arc_start.push(nt as u32);
+    (arc_start, arc_creator, arc_destroyer)
+}
+
+/// Whether the pool, in arc order, is exactly the arcs of `dag` over the ranges `starts`:
+/// every tet of each range has that arc's creator and destroyer, and no range is empty (a
+/// read-only pass over the pool, by creator on both cores). What makes ranges updated from
+/// the moved tets alone ([`Merge::kept_arcs`]) independent of the editor's hint.
+fn arcs_hold(
+    starts: &[u32],
+    dag: &KnownDag,
+    creator: &[FragmentId],
+    destroyer: &[FragmentId],
+) -> bool {
+    let na = dag.arc_destroyer.len();
+    let nf = dag.out_start.len() - 1;
+    starts.len() == na + 1
+        && starts[0] == 0
+        && starts[na] as usize == creator.len()
+        && (0..nf).into_par_iter().with_min_len(1 << 10).all(|f| {
+            (dag.out_start[f] as usize..dag.out_start[f + 1] as usize).all(|a| {
+                let r = starts[a] as usize..starts[a + 1] as usize;
+                let d = dag.arc_destroyer[a];
+                !r.is_empty()
+                    && creator[r.clone()].iter().all(|c| c.idx() == f)
+                    && destroyer[r].iter().all(|&x| x == d)
+            })
+        })
 }
 
 /// A tet's arc, as one sortable number: creator, then destroyer.
@@ -500,6 +569,66 @@ impl Merge {
             sorted,
             pos,
         })
+    }
+
+    /// The arcs' tet ranges after this reordering, updated from `starts` (those of the MT
+    /// opened, whose arcs `dag` describes; `creator`, `destroyer` before reordering) when
+    /// every moved tet joins an arc that MT had and no arc is left empty: the same arcs.
+    /// `None` otherwise. Proportional to the moved tets and the arcs after the first one
+    /// they change, not to the pool.
+    fn kept_arcs(
+        &self,
+        creator: &[FragmentId],
+        destroyer: &[FragmentId],
+        opened_sorted: usize,
+        dag: &KnownDag,
+        mut starts: Vec<u32>,
+    ) -> Option<Vec<u32>> {
+        let na = dag.arc_destroyer.len();
+        let nf = dag.out_start.len() - 1;
+        if starts.len() != na + 1 || starts[na] as usize != opened_sorted {
+            return None;
+        }
+        let arc_of = |t: u32| -> Option<u32> {
+            let (c, d) = (creator[t as usize].idx(), destroyer[t as usize]);
+            if c >= nf {
+                return None;
+            }
+            let (a, b) = (dag.out_start[c] as usize, dag.out_start[c + 1] as usize);
+            let i = dag.arc_destroyer[a..b].binary_search(&d).ok()?;
+            Some((a + i) as u32)
+        };
+        // Per arc, tets in (+1: moved there) and out (-1: moved from there, when it was
+        // in the opened pool).
+        let mut delta: Vec<(u32, i32)> = Vec::with_capacity(self.sorted.len() * 2);
+        for &t in &self.sorted {
+            delta.push((arc_of(t)?, 1));
+        }
+        for &t in self
+            .by_index
+            .iter()
+            .take_while(|&&t| (t as usize) < opened_sorted)
+        {
+            let a = starts.partition_point(|&s| s <= t) - 1;
+            delta.push((a as u32, -1));
+        }
+        delta.sort_unstable_by_key(|&(a, _)| a);
+        let Some(&(first, _)) = delta.first() else {
+            return Some(starts);
+        };
+        // Arc `a` starts after the tets gained and lost by the arcs before it.
+        let (mut shift, mut k) = (0i64, 0usize);
+        for (a, s) in starts.iter_mut().enumerate().skip(first as usize + 1) {
+            while k < delta.len() && (delta[k].0 as usize) < a {
+                shift += i64::from(delta[k].1);
+                k += 1;
+            }
+            *s = u32::try_from(i64::from(*s) + shift).ok()?;
+        }
+        let emptied = delta
+            .iter()
+            .any(|&(a, _)| starts[a as usize] >= starts[a as usize + 1]);
+        (!emptied).then_some(starts)
     }
 
     /// Reorders `v`, `width` values per tet.

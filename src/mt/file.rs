@@ -405,5 +405,6 @@ fn parse(payload: &[u8]) -> Result<Mt, String> {
         known_boxes: None,
         keep_room: false,
         known_dag: None,
+        arcs_kept: false,
     })
 }

@@ -159,6 +159,10 @@ pub(crate) struct MtParts {
     pub keep_room: bool,
     /// The DAG tables of the MT an edit opened, reused when the arcs are the same pairs.
     pub known_dag: Option<KnownDag>,
+    /// The arcs are `known_dag`'s, unchanged (`arc_creator` and `arc_destroyer` are left
+    /// empty): only `arc_start` is new. Their creators and destroyers were checked when
+    /// that MT was assembled.
+    pub arcs_kept: bool,
 }
 
 /// The derived DAG tables of an MT opened for editing ([`edit::OpenMt`]): when the edit
@@ -215,11 +219,26 @@ impl Mt {
     /// Checks the structure of `parts` (everything later code indexes with) and derives
     /// levels, boxes and arc lists. Errors say what is inconsistent; they are reported as
     /// file corruption by the loader and are internal bugs anywhere else.
-    pub(crate) fn assemble(p: MtParts) -> Result<Mt, String> {
+    pub(crate) fn assemble(mut p: MtParts) -> Result<Mt, String> {
         let nv = p.positions.len();
         let nt = p.tets.len();
-        let na = p.arc_creator.len();
         let nf = p.kind.len();
+        let kept = if p.arcs_kept {
+            let k = p.known_dag.take().ok_or("arcs kept from no MT")?;
+            if k.out_start.len() != nf + 1 || k.level.len() != nf {
+                return Err(format!(
+                    "arcs kept from an MT of {} fragments, not {nf}",
+                    k.level.len()
+                ));
+            }
+            Some(k)
+        } else {
+            None
+        };
+        let na = match &kept {
+            Some(k) => k.arc_destroyer.len(),
+            None => p.arc_creator.len(),
+        };
         for (what, n) in [
             ("vertices", nv),
             ("tets", nt),
@@ -232,12 +251,13 @@ impl Mt {
                 ));
             }
         }
-        if p.arc_destroyer.len() != na || p.arc_start.len() != na + 1 {
+        let destroyers = kept.as_ref().map_or(p.arc_destroyer.len(), |_| na);
+        if destroyers != na || p.arc_start.len() != na + 1 {
             return Err(format!(
                 "arc columns of different lengths ({} starts, {} creators, {} destroyers)",
                 p.arc_start.len(),
                 na,
-                p.arc_destroyer.len()
+                destroyers
             ));
         }
         if p.error.len() != nf {
@@ -252,7 +272,7 @@ impl Mt {
         if let Some(a) = (0..na).find(|&a| p.arc_start[a] > p.arc_start[a + 1]) {
             return Err(format!("arc {a} ends before it starts"));
         }
-        for a in 0..na {
+        for a in (0..na).filter(|_| kept.is_none()) {
             let (c, d) = (p.arc_creator[a], p.arc_destroyer[a]);
             if c.idx() >= nf || d.idx() >= nf {
                 return Err(format!(
@@ -283,7 +303,7 @@ impl Mt {
         // Sorted by (creator, destroyer), each pair once: what lets the creator column go
         // (the builder and `OpenMt::close` write arcs in this order; a file that does not
         // is corrupt).
-        if let Some(a) = (1..na).find(|&a| {
+        if let Some(a) = (1..na).filter(|_| kept.is_none()).find(|&a| {
             (p.arc_creator[a - 1], p.arc_destroyer[a - 1]) >= (p.arc_creator[a], p.arc_destroyer[a])
         }) {
             return Err(format!(
@@ -295,16 +315,37 @@ impl Mt {
                 p.arc_destroyer[a - 1]
             ));
         }
-        let mut out_start = vec![0u32; nf + 1];
-        for c in &p.arc_creator {
-            out_start[c.idx() + 1] += 1;
-        }
-        for f in 0..nf {
-            out_start[f + 1] += out_start[f];
-        }
-        let mut p = p;
+        // The same arcs (same creators by `out_start`, same destroyers) as the MT an edit
+        // opened: the same DAG, so the same predecessors and levels.
+        let (out_start, mut arc_destroyer, preds, known_level) = match kept {
+            Some(k) => (k.out_start, k.arc_destroyer, k.preds, Some(k.level)),
+            None => {
+                let mut out_start = vec![0u32; nf + 1];
+                for c in &p.arc_creator {
+                    out_start[c.idx() + 1] += 1;
+                }
+                for f in 0..nf {
+                    out_start[f + 1] += out_start[f];
+                }
+                let arc_destroyer = std::mem::take(&mut p.arc_destroyer);
+                let same_dag = p
+                    .known_dag
+                    .take()
+                    .filter(|k| k.out_start == out_start && k.arc_destroyer == arc_destroyer);
+                match same_dag {
+                    Some(k) => (out_start, arc_destroyer, k.preds, Some(k.level)),
+                    None => {
+                        let preds = Csr::from_pairs(
+                            nf,
+                            (0..na).map(|a| (arc_destroyer[a].0, p.arc_creator[a].0)),
+                        );
+                        (out_start, arc_destroyer, preds, None)
+                    }
+                }
+            }
+        };
         p.arc_start.shrink_to_fit();
-        p.arc_destroyer.shrink_to_fit();
+        arc_destroyer.shrink_to_fit();
         // An edited pool keeps the room its edit was given (`edit::edit_room`) for the
         // next one, which then appends there instead of copying the pool twice (to shrink
         // it, then to grow it again: 60 MB each way for a pool of 3.8 M tets). A built or
@@ -318,22 +359,6 @@ impl Mt {
         }
         p.kind.shrink_to_fit();
         p.error.shrink_to_fit();
-        // The same arcs (same creators by `out_start`, same destroyers) as the MT an edit
-        // opened: the same DAG, so the same predecessors and levels.
-        let same_dag = p
-            .known_dag
-            .take()
-            .filter(|k| k.out_start == out_start && k.arc_destroyer == p.arc_destroyer);
-        let (preds, known_level) = match same_dag {
-            Some(k) => (k.preds, Some(k.level)),
-            None => (
-                Csr::from_pairs(
-                    nf,
-                    (0..na).map(|a| (p.arc_destroyer[a].0, p.arc_creator[a].0)),
-                ),
-                None,
-            ),
-        };
         for f in 0..nf {
             let e = p.error[f];
             match p.kind[f] {
@@ -357,7 +382,7 @@ impl Mt {
         let level = match known_level {
             Some(level) => level,
             None => levels_with(nf, &preds, |f| {
-                p.arc_destroyer[out_start[f] as usize..out_start[f + 1] as usize]
+                arc_destroyer[out_start[f] as usize..out_start[f + 1] as usize]
                     .iter()
                     .map(|d| d.0)
             })
@@ -390,7 +415,7 @@ impl Mt {
                 let ins = preds
                     .row(f)
                     .into_iter()
-                    .filter_map(|c| arc_between(&out_start, &p.arc_destroyer, c, f32));
+                    .filter_map(|c| arc_between(&out_start, &arc_destroyer, c, f32));
                 let b = (out_start[f]..out_start[f + 1])
                     .chain(ins)
                     .fold(Aabb::EMPTY, |b, a| b.union(&arc_box(a)));
@@ -411,7 +436,7 @@ impl Mt {
             tets: p.tets,
             cell_data: p.cell_data,
             arc_start: p.arc_start,
-            arc_destroyer: p.arc_destroyer,
+            arc_destroyer,
             kind: p.kind,
             error: p.error,
             info: p.info,

@@ -996,6 +996,7 @@ fn freeze<E: TetError + ?Sized>(
         known_boxes: None,
         keep_room: false,
         known_dag: None,
+        arcs_kept: false,
     })
     .map_err(BuildError::Internal)
 }
