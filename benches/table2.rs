@@ -6,9 +6,10 @@
 //! scripts/vtk/cut_vtk_clip.py, as benches/cut_vs_vtk.rs) of the finest mesh by the same
 //! plane, in the same run; and, apart, the time to make the cutter (`MtCutter::new`: vertex
 //! scales, the fragments earlier cuts left cracked, the hierarchy over fragments, the open
-//! form's per-tet links, room in the pool), paid once per cutter, not per cut. Then a linear fit of total time against input cells, one cut on
-//! the fandisk-1m MT cutting about as many cells as fandisk's middle cut, and a second one
-//! continuing it on the same cutter (a blade's next step).
+//! form's per-tet links, room in the pool), paid once per cutter, not per cut. Then a
+//! linear fit of total time against input cells, one cut on the fandisk-1m MT cutting
+//! about as many cells as fandisk's middle cut, and a second one continuing it on the same
+//! cutter (a blade's next step).
 //!
 //! `cargo bench --bench table2 -- [LARGE_DIR]` (default /work/large; the 1m row is skipped
 //! with a note when `LARGE_DIR/fandisk-1m.node` is missing). Prints one JSON object on

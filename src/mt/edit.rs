@@ -10,11 +10,11 @@
 //! little moved (its result does not depend on the editor's hint); an editor that lists
 //! the fragments whose box it may have changed ([`OpenMt::changed_fragments`]) keeps the
 //! others' boxes (the cut does; `Mt::validate` checks every box); and when the arcs come
-//! back joining the same fragments as when opened (an edit that only adds tets to arcs),
-//! the predecessor lists and levels are the opened MT's (`Mt::validate` derives levels
-//! again and compares) and the arcs' ranges are updated from the moved tets alone, then
-//! checked against every tet (a read-only pass: the result still does not depend on the
-//! hint). Appended vertices and tets need attribute rows; the editor pushes them
+//! back joining the same fragments as when opened (an edit that adds no fragment and
+//! only moves tets into arcs the MT had), the arcs' ranges are updated from the moved
+//! tets alone, then checked against every tet (a read-only pass: the result still does
+//! not depend on the hint), and the DAG's tables are the opened MT's (`Mt::validate`
+//! derives levels again and compares). Appended vertices and tets need attribute rows; the editor pushes them
 //! (interpolated for vertices, inherited for tets, zeros for ghosts).
 //!
 //! This module knows nothing of cuts: the cut layer (`crate::cut::mt`) decides what to
@@ -54,7 +54,7 @@ pub struct OpenMt {
     pub changed_fragments: Option<Vec<u32>>,
     /// The fragment boxes when opened.
     boxes: Option<(BoxFrame, Vec<QuantBox>)>,
-    /// The DAG tables when opened (kept if the arcs come back the same).
+    /// The DAG tables when opened (kept if the arcs are).
     dag: Option<KnownDag>,
     /// The arcs' tet ranges when opened (`arc_start`), updated in place by a close that
     /// keeps the arcs.
@@ -438,8 +438,7 @@ impl OpenMt {
             info,
             known_boxes,
             keep_room: true,
-            known_dag: dag,
-            arcs_kept,
+            kept_arcs: dag.filter(|_| arcs_kept),
         })
         .map(|mt| (mt, links))
     }
@@ -676,16 +675,20 @@ impl Merge {
 mod tests {
     use super::*;
 
-    /// The in-place reordering is the stable sort by arc, whatever the hint says.
-    #[test]
-    fn merge_is_the_stable_sort_whatever_the_hint() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rand = |n: u64| {
+    /// Seeded numbers below `n` (xorshift64).
+    fn xorshift(mut seed: u64) -> impl FnMut(u64) -> u64 {
+        move |n| {
             seed ^= seed << 13;
             seed ^= seed >> 7;
             seed ^= seed << 17;
             seed % n
-        };
+        }
+    }
+
+    /// The in-place reordering is the stable sort by arc, whatever the hint says.
+    #[test]
+    fn merge_is_the_stable_sort_whatever_the_hint() {
+        let mut rand = xorshift(0x9e37_79b9_7f4a_7c15);
         let mut merged = 0;
         for round in 0..300 {
             let n = 1 + rand(400) as usize;
@@ -739,13 +742,7 @@ mod tests {
     /// arc or empty one are not kept.
     #[test]
     fn kept_arcs_are_the_scanned_arcs_whatever_the_hint() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut rand = |n: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % n
-        };
+        let mut rand = xorshift(0x2545_f491_4f6c_dd1d);
         let (mut kept, mut refused) = (0, 0);
         for round in 0..400 {
             let n = 1 + rand(300) as usize;

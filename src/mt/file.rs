@@ -404,7 +404,6 @@ fn parse(payload: &[u8]) -> Result<Mt, String> {
         info,
         known_boxes: None,
         keep_room: false,
-        known_dag: None,
-        arcs_kept: false,
+        kept_arcs: None,
     })
 }

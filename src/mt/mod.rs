@@ -157,17 +157,16 @@ pub(crate) struct MtParts {
     pub known_boxes: Option<KnownBoxes>,
     /// Whether the pool keeps spare capacity (an edit's) instead of being made to fit.
     pub keep_room: bool,
-    /// The DAG tables of the MT an edit opened, reused when the arcs are the same pairs.
-    pub known_dag: Option<KnownDag>,
-    /// The arcs are `known_dag`'s, unchanged (`arc_creator` and `arc_destroyer` are left
-    /// empty): only `arc_start` is new. Their creators and destroyers were checked when
-    /// that MT was assembled.
-    pub arcs_kept: bool,
+    /// `Some`: the arcs are those of the MT an edit opened, unchanged, with its DAG tables
+    /// (`arc_creator` and `arc_destroyer` are left empty; only `arc_start` is new). Their
+    /// creators and destroyers were checked when that MT was assembled.
+    pub kept_arcs: Option<KnownDag>,
 }
 
 /// The derived DAG tables of an MT opened for editing ([`edit::OpenMt`]): when the edit
 /// leaves every arc joining the same fragments (a cut that splits none only adds tets to
-/// arcs), predecessors and levels are these, not derived again over the whole DAG.
+/// arcs), successors, predecessors and levels are these, not derived again over the whole
+/// DAG.
 #[derive(Clone, Debug)]
 pub(crate) struct KnownDag {
     pub out_start: Vec<u32>,
@@ -223,18 +222,15 @@ impl Mt {
         let nv = p.positions.len();
         let nt = p.tets.len();
         let nf = p.kind.len();
-        let kept = if p.arcs_kept {
-            let k = p.known_dag.take().ok_or("arcs kept from no MT")?;
-            if k.out_start.len() != nf + 1 || k.level.len() != nf {
-                return Err(format!(
-                    "arcs kept from an MT of {} fragments, not {nf}",
-                    k.level.len()
-                ));
-            }
-            Some(k)
-        } else {
-            None
-        };
+        let kept = p.kept_arcs.take();
+        if let Some(k) = &kept
+            && (k.out_start.len() != nf + 1 || k.level.len() != nf)
+        {
+            return Err(format!(
+                "arcs kept from an MT of {} fragments, not {nf}",
+                k.level.len()
+            ));
+        }
         let na = match &kept {
             Some(k) => k.arc_destroyer.len(),
             None => p.arc_creator.len(),
@@ -315,8 +311,8 @@ impl Mt {
                 p.arc_destroyer[a - 1]
             ));
         }
-        // The same arcs (same creators by `out_start`, same destroyers) as the MT an edit
-        // opened: the same DAG, so the same predecessors and levels.
+        // Arcs kept from the MT an edit opened: the same DAG, so the same successors,
+        // predecessors and levels.
         let (out_start, mut arc_destroyer, preds, known_level) = match kept {
             Some(k) => (k.out_start, k.arc_destroyer, k.preds, Some(k.level)),
             None => {
@@ -328,20 +324,11 @@ impl Mt {
                     out_start[f + 1] += out_start[f];
                 }
                 let arc_destroyer = std::mem::take(&mut p.arc_destroyer);
-                let same_dag = p
-                    .known_dag
-                    .take()
-                    .filter(|k| k.out_start == out_start && k.arc_destroyer == arc_destroyer);
-                match same_dag {
-                    Some(k) => (out_start, arc_destroyer, k.preds, Some(k.level)),
-                    None => {
-                        let preds = Csr::from_pairs(
-                            nf,
-                            (0..na).map(|a| (arc_destroyer[a].0, p.arc_creator[a].0)),
-                        );
-                        (out_start, arc_destroyer, preds, None)
-                    }
-                }
+                let preds = Csr::from_pairs(
+                    nf,
+                    (0..na).map(|a| (arc_destroyer[a].0, p.arc_creator[a].0)),
+                );
+                (out_start, arc_destroyer, preds, None)
             }
         };
         p.arc_start.shrink_to_fit();

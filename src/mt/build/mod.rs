@@ -995,8 +995,7 @@ fn freeze<E: TetError + ?Sized>(
         info,
         known_boxes: None,
         keep_room: false,
-        known_dag: None,
-        arcs_kept: false,
+        kept_arcs: None,
     })
     .map_err(BuildError::Internal)
 }
