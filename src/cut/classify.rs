@@ -300,8 +300,8 @@ impl<'a> StateClassifier<'a> {
     /// Vertices on the plane (within snapping distance) whose projection lies outside C
     /// by at most `relative` × their scale count as on the cut too. The MT cut uses it so
     /// that a cut continuing an earlier one in the same plane takes the earlier crack tips
-    /// on its contour (which lie up to the face-point margin off the earlier contour) as
-    /// part of the crack (see [`super::mt_cut`]).
+    /// on its contour (which lie about the face-point margin off the earlier contour) as
+    /// part of the crack (see [`super::mt_cut`] and `mt_cut::contour_band`).
     pub fn with_contour_band(mut self, relative: f64) -> Self {
         self.band = relative;
         self

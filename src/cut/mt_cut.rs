@@ -41,13 +41,13 @@
 //!    plane: its tips (face points, which the face-point margin keeps off the earlier
 //!    contour) on the new polygon's contour, and the lips behind it. Two rules keep every
 //!    level consistent there. A vertex on the plane within a *contour band* outside C
-//!    (the face-point margin, at most 5% of the vertex's scale) counts as on the cut, so
-//!    the earlier tips join the crack and are duplicated once surrounded by it, instead
-//!    of being met by new tips a rounding error away. A vertex on the plane farther
-//!    outside C is not cut, and its exact side is rounding noise; it takes the side of
-//!    the other vertices of its tets when those all lie on one side (one decision per
-//!    cluster of such vertices joined by edges), so a lip tet is not taken for a tet C
-//!    crosses and split into children lying flat between the lips
+//!    (twice the face-point margin, at most 5% of the vertex's scale: `contour_band`)
+//!    counts as on the cut, so the earlier tips join the crack and are duplicated once
+//!    surrounded by it, instead of being met by new tips a rounding error away. A vertex
+//!    on the plane farther outside C is not cut, and its exact side is rounding noise; it
+//!    takes the side of the other vertices of its tets when those all lie on one side (one
+//!    decision per cluster of such vertices joined by edges), so a lip tet is not taken
+//!    for a tet C crosses and split into children lying flat between the lips
 //!    (`settle_plane_vertices`; tests/mtcut_cut.rs, `a_blade_swept_across_the_mt_stays_valid`).
 //!
 //!    **Which snapped vertices are duplicated** is decided once per vertex over all
@@ -1394,19 +1394,30 @@ impl Reach {
     }
 }
 
-/// The contour band of an MT cut ([`StateClassifier::with_contour_band`]): the face-point
-/// margin, at most 5% of a vertex's scale.
+/// The contour band of an MT cut ([`StateClassifier::with_contour_band`]): twice the
+/// face-point margin, at most 5% of a vertex's scale. A crack tip lies inside the contour
+/// where its cut ended by up to the margin of its section segment (the clamp of its place on
+/// the segment), plus up to the margin of its face's uncut edge (the segment's outer end
+/// moved along that edge); on an MT's coarse levels both are longer than the tip's scale
+/// (taken from the finest mesh, so that every level decides alike). With the margin alone,
+/// a blade moved in an axis-aligned plane (tests/mt_scalpel.rs) met a tip 1.27 margins of
+/// its scale inside the last step's contour: outside the band, it joined both lips of the
+/// earlier crack in one cluster of `settle_plane_vertices`, whose sides were then rounding
+/// noise. Twice the margin is a measured width, not a bound: a tip on a coarse face more
+/// than twice its scale long can lie farther in.
 pub(crate) fn contour_band(opts: &CutOptions) -> f64 {
-    opts.face_point_margin.min(0.05)
+    (2.0 * opts.face_point_margin).min(0.05)
 }
 
 /// How far from C (relative to their scale) the crack tips of earlier cuts count as on the
-/// cut ([`StateClassifier::with_crack_tips`]). A tip lies on its face at most the face-point
-/// margin (times the section segment, no longer than the tip's scale) from the contour
-/// where its cut ended, so a cut beginning on that contour, in whatever plane, passes
-/// within the margin of it; the band above, half as much again for rounding.
+/// cut, for the plain-mesh engine ([`StateClassifier::with_crack_tips`]): 1.5 face-point
+/// margins, at most 7.5%. On a plain mesh a tip's section segment is no longer than its
+/// scale, so the tip lies within about the margin of it from the contour where its cut
+/// ended (more only where the segment's outer end moved, see [`contour_band`]), and a cut
+/// beginning on that contour, in whatever plane, passes within the margin of it; half as
+/// much again for rounding.
 pub(crate) fn tip_reach(opts: &CutOptions) -> f64 {
-    1.5 * contour_band(opts)
+    1.5 * opts.face_point_margin.min(0.05)
 }
 
 /// Vertices within snapping distance of C's plane but outside C (and its contour band:
