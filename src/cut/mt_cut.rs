@@ -1394,30 +1394,35 @@ impl Reach {
     }
 }
 
-/// The contour band of an MT cut ([`StateClassifier::with_contour_band`]): twice the
-/// face-point margin, at most 5% of a vertex's scale. A crack tip lies inside the contour
-/// where its cut ended by up to the margin of its section segment (the clamp of its place on
-/// the segment), plus up to the margin of its face's uncut edge (the segment's outer end
-/// moved along that edge); on an MT's coarse levels both are longer than the tip's scale
-/// (taken from the finest mesh, so that every level decides alike). With the margin alone,
-/// a blade moved in an axis-aligned plane (tests/mt_scalpel.rs) met a tip 1.27 margins of
-/// its scale inside the last step's contour: outside the band, it joined both lips of the
-/// earlier crack in one cluster of `settle_plane_vertices`, whose sides were then rounding
-/// noise. Twice the margin is a measured width, not a bound: a tip on a coarse face more
-/// than twice its scale long can lie farther in.
+/// The most, relative to a vertex's scale, that the contour band and the crack-tip reach take,
+/// whatever the face-point margin: 5%. Chosen, not derived: above the scalpel's needs (its margin,
+/// 0.01, gives a 2% band and a 1.5% reach) and far below the default snap (0.2), so that cuts with
+/// the default margin (0.5, face points mid-segment) reach barely past C's contour.
+const CRACK_REACH_CAP: f64 = 0.05;
+
+/// The contour band ([`StateClassifier::with_contour_band`]) of a cut that continues cracks: every
+/// MT cut, and a plain-mesh cut with [`continue_cracks`](CutOptions::continue_cracks). Twice the
+/// face-point margin, at most [`CRACK_REACH_CAP`]. A crack tip lies inside the contour where its
+/// cut ended by up to the margin of its section segment (the clamp of its place on the segment),
+/// plus up to the margin of its face's uncut edge (the segment's outer end moved along that edge);
+/// on an MT's coarse levels both are longer than the tip's scale (taken from the finest mesh, so
+/// that every level decides alike). With the margin alone, a blade moved in an axis-aligned plane
+/// (tests/mt_scalpel.rs) met a tip 1.27 margins of its scale inside the last step's contour:
+/// outside the band, it joined both lips of the earlier crack in one cluster of
+/// `settle_plane_vertices`, whose sides were then rounding noise. Twice the margin is a measured
+/// width, not a bound: a tip on a coarse face more than twice its scale long can lie farther in.
 pub(crate) fn contour_band(opts: &CutOptions) -> f64 {
-    (2.0 * opts.face_point_margin).min(0.05)
+    (2.0 * opts.face_point_margin).min(CRACK_REACH_CAP)
 }
 
-/// How far from C (relative to their scale) the crack tips of earlier cuts count as on the
-/// cut, for the plain-mesh engine ([`StateClassifier::with_crack_tips`]): 1.5 face-point
-/// margins, at most 7.5%. On a plain mesh a tip's section segment is no longer than its
-/// scale, so the tip lies within about the margin of it from the contour where its cut
-/// ended (more only where the segment's outer end moved, see [`contour_band`]), and a cut
-/// beginning on that contour, in whatever plane, passes within the margin of it; half as
-/// much again for rounding.
+/// How far from C (relative to their scale) the crack tips of earlier cuts count as on the cut, for
+/// the plain-mesh engine ([`StateClassifier::with_crack_tips`]): 1.5 face-point margins, the margin
+/// taken at most [`CRACK_REACH_CAP`]. On a plain mesh a tip's section segment is no longer than its
+/// scale, so the tip lies within about the margin of it from the contour where its cut ended (more
+/// only where the segment's outer end moved, see [`contour_band`]), and a cut beginning on that
+/// contour, in whatever plane, passes within the margin of it; half as much again for rounding.
 pub(crate) fn tip_reach(opts: &CutOptions) -> f64 {
-    1.5 * opts.face_point_margin.min(0.05)
+    1.5 * opts.face_point_margin.min(CRACK_REACH_CAP)
 }
 
 /// Vertices within snapping distance of C's plane but outside C (and its contour band:
