@@ -467,9 +467,12 @@ fn arcs_of(
     (arc_start, arc_creator, arc_destroyer)
 }
 
-/// Whether the pool, in arc order, is exactly the arcs of `dag` over the ranges `starts`:
-/// every tet of each range has that arc's creator and destroyer, and no range is empty (a
-/// read-only pass over the pool, by creator on both cores). What makes ranges updated from
+/// Whether the pool, sorted by arc ([`Merge`] sorts it, or refuses), is exactly the arcs of
+/// `dag` over the ranges `starts`: no range is empty, and the first and the last tet of each
+/// have that arc's creator and destroyer. In a sorted pool the tets between two tets of one
+/// arc belong to it, so the ends of each range say what a pass over all its tets would (the
+/// arcs of `dag` are listed in the pool's order: by creator, then destroyer). Proportional
+/// to the arcs, not to the pool (by creator, on both cores); what makes ranges updated from
 /// the moved tets alone ([`Merge::kept_arcs`]) independent of the editor's hint.
 fn arcs_hold(
     starts: &[u32],
@@ -479,16 +482,15 @@ fn arcs_hold(
 ) -> bool {
     let na = dag.arc_destroyer.len();
     let nf = dag.out_start.len() - 1;
+    let is = |t: usize, f: usize, d: FragmentId| creator[t].idx() == f && destroyer[t] == d;
     starts.len() == na + 1
         && starts[0] == 0
         && starts[na] as usize == creator.len()
-        && (0..nf).into_par_iter().with_min_len(1 << 10).all(|f| {
+        && (0..nf).into_par_iter().with_min_len(1 << 12).all(|f| {
             (dag.out_start[f] as usize..dag.out_start[f + 1] as usize).all(|a| {
-                let r = starts[a] as usize..starts[a + 1] as usize;
+                let (lo, hi) = (starts[a] as usize, starts[a + 1] as usize);
                 let d = dag.arc_destroyer[a];
-                !r.is_empty()
-                    && creator[r.clone()].iter().all(|c| c.idx() == f)
-                    && destroyer[r].iter().all(|&x| x == d)
+                lo < hi && hi <= creator.len() && is(lo, f, d) && is(hi - 1, f, d)
             })
         })
 }
