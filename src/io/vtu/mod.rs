@@ -13,7 +13,7 @@
 //! bytes block by block inside a parallel compression pass (rayon), so no full byte copy of
 //! an array is made, and VTK 9.1 reads everything it writes (tests/io_vtk.rs).
 //!
-//! * [`format`]: scalar types, byte order, headers, compressors.
+//! * [`format`](mod@format): scalar types, byte order, headers, compressors.
 //! * [`binary`]: base64, size headers, compressed blocks (both directions).
 //! * [`xml`]: the scan of the XML part.
 //! * [`values`]: typed conversions of array bytes.
