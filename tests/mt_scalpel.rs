@@ -2,10 +2,11 @@
 //! step cutting only the area it swept. Incisions that turn, a blade that tilts as it
 //! moves (non-planar sweeps, two triangles per step), an incision that ends inside the
 //! body and is extended later, and new incisions meeting an earlier one (T) or crossing it
-//! (X), and a blade in an axis-aligned plane. The ignored ones fail today (see their
-//! reasons); they are the work left on issue 7's item 4. After every step the MT is valid,
-//! the finest and coarsest meshes keep their volume, and extractions at 10 thresholds (and
-//! focus regions at some steps) are valid meshes that no polygon applied so far crosses.
+//! (X), and a blade in an axis-aligned plane. The ignored ones (a blade that turns or
+//! tilts) fail today (see their reasons); they are the work left on issue 7's item 4.
+//! After every step the MT is valid, the finest and coarsest meshes keep their volume, and
+//! extractions at 10 thresholds (and focus regions at some steps) are valid meshes that no
+//! polygon applied so far crosses.
 
 mod blades;
 mod mt_common;
@@ -127,19 +128,6 @@ fn a_tilting_blade_across_the_body_separates_it() {
 /// A shallow incision along x, then a second one starting outside the body and ending on
 /// the first (T).
 #[test]
-#[ignore = "KNOWN FAILURE (issue 7 open): passes on fandisk and liver; on pinion the second \
-            step of the T (in the plane of the first) leaves doubled ghost faces in four \
-            fragments (FragmentNotConforming). The first step's lips lie on the plane behind \
-            the new contour; settle_plane_vertices joins both lips into one cluster through \
-            the first step's bottom tips (on the plane, shared by both lips), so every lip \
-            vertex keeps its exact side, rounding noise: a negative-lip vertex taken for \
-            positive makes its lip tets straddle and 3 front tips unsnapped. Deciding per \
-            vertex (clusters joined only through flat tets) removes that, but the bottom \
-            tips need a side per lip: with their exact side a lip tet gets a face point in \
-            its lip face (hanging vertex); as ON, tets straddling the plane below the old \
-            crack get face points (the tables take ON for inside C); a side per tet \
-            disagrees across faces shared with straddling tets. The tables need a state \
-            for 'on the plane, outside C'"]
 fn an_incision_meeting_an_earlier_one() {
     for name in mt_common::MESHES {
         let mut run = Run::new(name);
@@ -156,13 +144,6 @@ fn an_incision_meeting_an_earlier_one() {
 
 /// A shallow incision across the whole body in y, in 10 steps, then one crossing it (X).
 #[test]
-#[ignore = "KNOWN FAILURE (issue 7 open): on fandisk the eighth step of the shallow \
-            straight incision: the earlier steps' bottom tips (on the plane outside C, each \
-            shared by both lips) join both lips in one cluster of settle_plane_vertices, \
-            whose sides are then rounding noise: lip tets taken for crossed, boundary edges \
-            bounding four faces. Joining only vertices with one side around them (tried) \
-            leaves the bottom tips their exact side: a face point in one lip's face, which \
-            the other lip's face, at the same place, lacks (a hanging vertex). As for T"]
 fn an_incision_crossing_an_earlier_one() {
     for name in mt_common::MESHES {
         let mut run = Run::new(name);

@@ -43,6 +43,8 @@ pub struct QueryOptions<'c> {
     pub contour_band: f64,
     /// Crack tips and their reach ([`StateClassifier::with_crack_tips`]; none: `None`).
     pub tips: Option<(&'c CrackTips, f64)>,
+    /// Vertices of earlier cracks ([`StateClassifier::with_crack_vertices`]; none: `None`).
+    pub crack: Option<&'c [bool]>,
 }
 
 /// What a query found: candidate tets with their vertex states, and how many tets it
@@ -205,6 +207,7 @@ impl TetBvh {
             cache,
             contour_band,
             tips,
+            crack,
         } = options;
         let mut out = Candidates::default();
         if self.nodes.is_empty() {
@@ -218,6 +221,9 @@ impl TetBvh {
         if let Some((tips, tip_reach)) = tips {
             states = states.with_crack_tips(tips, tip_reach);
             reach = reach.max(tip_reach);
+        }
+        if let Some(crack) = crack {
+            states = states.with_crack_vertices(crack);
         }
         let q = Query {
             positions,

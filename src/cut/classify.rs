@@ -16,7 +16,7 @@
 //! classified again ([`CutSession::forget_vertices`]) before anything is committed.
 
 use super::stamps::Stamps;
-use super::tables::{NEG, ON, POS, config_index, face_points, is_crossed};
+use super::tables::{NEG, ON, OUT, POS, config_index, face_points, is_crossed};
 use crate::geom::{CutPolygon, DVec3, Sign, Tolerance};
 use crate::mesh::tables::{EDGE_OF_VERTICES, TET_EDGES, TET_FACES};
 use crate::mesh::{Tet, VertexId};
@@ -227,15 +227,26 @@ impl TetClass {
 /// has to be consistent).
 #[inline]
 pub fn vertex_state(polygon: &CutPolygon, snap: Tolerance, p: DVec3, scale: f64) -> u8 {
-    vertex_state_in_band(polygon, snap, 0.0, p, scale)
+    vertex_state_in_band(polygon, snap, 0.0, false, p, scale)
 }
 
+/// How far from the plane, in rounding bounds of the signed distance
+/// ([`CutPolygon::filter_bound`]), a vertex still lies on it: the points an earlier cut
+/// made in the same plane (an incision the blade extends, or crosses) lie on the new
+/// polygon's plane up to the rounding of their interpolation and of the two planes' normals,
+/// a few bounds; their exact sides are that noise. Far below any snapping distance, so an
+/// edge from such a vertex meets the plane at the vertex, outside C.
+pub const ON_PLANE_ROUNDING: f64 = 64.0;
+
 /// [`vertex_state`], a vertex on the plane also counting as on the cut when its projection
-/// lies within `band × scale` outside C (see [`StateClassifier::with_contour_band`]).
+/// lies within `band × scale` outside C (see [`StateClassifier::with_contour_band`]), and
+/// as [`OUT`] only when `crack` (a vertex of an earlier crack, see
+/// [`StateClassifier::with_crack_vertices`]); otherwise, on the plane outside C, positive.
 fn vertex_state_in_band(
     polygon: &CutPolygon,
     snap: Tolerance,
     band: f64,
+    crack: bool,
     p: DVec3,
     scale: f64,
 ) -> u8 {
@@ -243,6 +254,9 @@ fn vertex_state_in_band(
     let r = snap.distance(scale);
     if d.abs() <= r && polygon.projection_distance(p) <= r.max(band * scale) {
         return ON;
+    }
+    if crack && d.abs() <= ON_PLANE_ROUNDING * polygon.filter_bound(p.abs().max_element()) {
+        return OUT;
     }
     match polygon.side_filtered(p, d) {
         Sign::Negative => NEG,
@@ -259,7 +273,8 @@ pub struct StateClassifier<'a> {
     snap: Tolerance,
     normal: DVec3,
     offset: f64,
-    /// Rounding bound of the dot product over the whole mesh.
+    /// Rounding bound of the dot product over the whole mesh, times
+    /// [`ON_PLANE_ROUNDING`]: nearer than this a vertex may be [`OUT`].
     filter: f64,
     /// Beyond this distance no vertex of the pool can be snapped.
     far: f64,
@@ -271,6 +286,9 @@ pub struct StateClassifier<'a> {
     tips: Option<&'a CrackTips>,
     tip_reach: f64,
     max_scale: f64,
+    /// Per vertex: whether it lies on an earlier crack
+    /// ([`with_crack_vertices`](Self::with_crack_vertices)).
+    crack: Option<&'a [bool]>,
 }
 
 impl<'a> StateClassifier<'a> {
@@ -288,20 +306,35 @@ impl<'a> StateClassifier<'a> {
             snap,
             normal: polygon.plane().normal,
             offset: polygon.plane().offset,
-            filter,
-            far: snap.distance(max_scale).max(filter),
+            filter: ON_PLANE_ROUNDING * filter,
+            far: snap.distance(max_scale).max(ON_PLANE_ROUNDING * filter),
             band: 0.0,
             tips: None,
             tip_reach: 0.0,
             max_scale,
+            crack: None,
         }
     }
 
+    /// Vertices of earlier cracks (`crack[v]`: cut points, face points, and the vertices
+    /// snapped and duplicated) lying on the plane up to rounding ([`ON_PLANE_ROUNDING`])
+    /// outside C are [`OUT`] instead of taking their exact side, which is rounding noise for
+    /// them: the lips and tips of an incision the blade extends in its own plane. Other
+    /// vertices on the plane outside C keep counting as positive: an `OUT` vertex shared by
+    /// both sides lets the crack open along the faces in the plane between it and a
+    /// snapped vertex, which joins a new crack to an earlier one but would, at a vertex
+    /// of the body the plane merely passes through, open the body outside C.
+    pub fn with_crack_vertices(mut self, crack: &'a [bool]) -> Self {
+        self.crack = Some(crack);
+        self
+    }
+
     /// Vertices on the plane (within snapping distance) whose projection lies outside C
-    /// by at most `relative` × their scale count as on the cut too. The MT cut uses it so
-    /// that a cut continuing an earlier one in the same plane takes the earlier crack tips
-    /// on its contour (which lie about the face-point margin off the earlier contour) as
-    /// part of the crack (see [`super::mt_cut`] and `mt_cut::contour_band`).
+    /// by at most `relative` × their scale count as on the cut too. Cuts that continue
+    /// cracks (MT cuts, plain-mesh scalpels) use it so that a cut continuing an earlier one
+    /// in the same plane takes the earlier crack tips on its contour (which lie about the
+    /// face-point margin off the earlier contour) as part of the crack (see
+    /// [`super::mt_cut`] and `mt_cut::contour_band`).
     pub fn with_contour_band(mut self, relative: f64) -> Self {
         self.band = relative;
         self
@@ -373,7 +406,8 @@ impl<'a> StateClassifier<'a> {
     #[cold]
     #[inline(never)]
     fn near(&self, v: VertexId, p: DVec3, scale: f64) -> u8 {
-        let state = vertex_state_in_band(self.polygon, self.snap, self.band, p, scale);
+        let crack = self.crack.is_some_and(|c| c.get(v.idx()) == Some(&true));
+        let state = vertex_state_in_band(self.polygon, self.snap, self.band, crack, p, scale);
         if state != ON && self.tip_near(v, self.polygon.signed_distance(p), scale) {
             let reach = self.tip_reach * scale;
             if self.polygon.projection_distance(p) <= reach {
@@ -429,10 +463,10 @@ impl<'a> StateClassifier<'a> {
 /// The crossed edges of a tet in these states (bit `e` for local edge `e`).
 #[inline]
 pub fn crossed_mask(states: [u8; 4]) -> u8 {
-    static TABLE: std::sync::OnceLock<[u8; 81]> = std::sync::OnceLock::new();
+    static TABLE: std::sync::OnceLock<[u8; 256]> = std::sync::OnceLock::new();
     let table = TABLE.get_or_init(|| {
         std::array::from_fn(|code| {
-            let s = [code % 3, code / 3 % 3, code / 9 % 3, code / 27 % 3].map(|x| x as u8);
+            let (s, _) = super::tables::config_of_index(code * 64);
             let mut m = 0;
             for (e, &[a, b]) in TET_EDGES.iter().enumerate() {
                 if is_crossed(s[a], s[b]) {
@@ -658,8 +692,10 @@ impl<'a> CutSession<'a> {
         let mut outside = None;
         for k in 0..3 {
             let (a, b) = (lv[k], lv[(k + 1) % 3]);
-            if class.states[a] == ON {
-                inside = Some(SectionEnd::Vertex(tet[a]));
+            match class.states[a] {
+                ON => inside = Some(SectionEnd::Vertex(tet[a])),
+                OUT => outside = Some(SectionEnd::Vertex(tet[a])),
+                _ => {}
             }
             let e = EDGE_OF_VERTICES[a][b];
             if class.edges[e] != NONE {

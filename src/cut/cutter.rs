@@ -72,6 +72,10 @@ pub struct Cutter {
     /// ([`CutOptions::continue_cracks`]); `None` for an MT frontier, which decides as the
     /// MT cut does, and that does not take crack tips (see [`super::mt_cut`]'s limits).
     tips: Option<CrackTips>,
+    /// For an MT frontier: per vertex, whether it lies on an earlier crack, as the MT cut
+    /// takes them (`StateClassifier::with_crack_vertices`), kept up to date with the
+    /// vertices this cutter's cuts add. `None` for a plain mesh.
+    crack: Option<Vec<bool>>,
 }
 
 /// The vertices snapped onto the cut (sorted, distinct). `mark` has an entry per vertex,
@@ -106,13 +110,17 @@ impl Cutter {
     /// A cutter for a mesh extracted from an MT (a frontier), deciding as
     /// [`MtCutter`](super::MtCutter) decides on the same tets: with the MT's vertex `scales`
     /// (one per vertex, [`MtCutter::vertex_scales`](super::MtCutter::vertex_scales) of
-    /// each vertex's MT vertex: they place face points) and the MT cut's rules for
-    /// continuing cracks ([`CutOptions::continue_cracks`], set whatever `options` say, but
-    /// without taking crack tips, as the MT cut), so a blade swept in steps continues its
-    /// crack. Options as the MT cut takes them.
+    /// each vertex's MT vertex: they place face points), which vertices lie on earlier
+    /// cracks (`crack`, one flag per vertex,
+    /// [`MtCutter::crack_vertices`](super::MtCutter::crack_vertices) of each vertex's MT
+    /// vertex) and the MT cut's rules for continuing cracks
+    /// ([`CutOptions::continue_cracks`], set whatever `options` say, but without taking
+    /// crack tips, as the MT cut), so a blade swept in steps continues its crack. Options
+    /// as the MT cut takes them.
     pub fn for_mt_frontier(
         mesh: TetMesh,
         scales: Vec<f64>,
+        crack: Vec<bool>,
         options: CutOptions,
     ) -> Result<Cutter, CutError> {
         options.check()?;
@@ -130,8 +138,16 @@ impl Cutter {
                 expected: "finite and non-negative",
             });
         }
+        if crack.len() != mesh.nb_vertices() {
+            return Err(CutError::InvalidOption {
+                option: "crack",
+                value: crack.len() as f64,
+                expected: "one flag per vertex",
+            });
+        }
         let mut cutter = Cutter::prepare_with(mesh, scales, options.with_continue_cracks(true));
         cutter.tips = None;
+        cutter.crack = Some(crack);
         Ok(cutter)
     }
 
@@ -171,6 +187,7 @@ impl Cutter {
             cuts_applied,
             build_time,
             tips: Some(CrackTips::default()),
+            crack: None,
         };
         cutter.reserve_scratch(cutter.mesh.nb_vertices());
         cutter
@@ -348,6 +365,7 @@ impl Cutter {
                     .as_ref()
                     .filter(|_| opts.continue_cracks)
                     .map(|t| (t, super::mt_cut::tip_reach(&opts))),
+                crack: self.crack.as_deref(),
             },
         );
         let mut cand = found.tets;
@@ -613,6 +631,9 @@ impl Cutter {
         if let Some(tips) = self.tips.as_mut() {
             tips.insert_face_points(first, &origins);
         }
+        if let Some(crack) = self.crack.as_mut() {
+            crack.resize(self.mesh.nb_vertices(), true);
+        }
         self.cuts_applied += 1;
         let mark = self.cuts_applied as f64;
         let mut by_case = [0usize; 10];
@@ -657,6 +678,10 @@ impl Cutter {
         for (v, members) in copies.groups {
             let copy = self.mesh.push_vertex(self.mesh.position(v));
             self.scales.push(self.scales[v.idx()]);
+            if let Some(crack) = self.crack.as_mut() {
+                crack[v.idx()] = true;
+                crack.push(true);
+            }
             self.mesh.point_data.push_copy(v.idx());
             origins.push(VertexOrigin::Copy { of: v });
             let all = self.mesh.tets_mut();

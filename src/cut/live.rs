@@ -556,10 +556,11 @@ impl LiveMt {
 /// options and vertex scales, so it decides as the MT cut decides on those tets.
 fn current_cutter(mt: &MtCutter, mesh: TetMesh, ids: &[VertexId]) -> Result<Cutter, CutError> {
     let scales = ids.iter().map(|v| mt.vertex_scales()[v.idx()]).collect();
+    let crack = ids.iter().map(|v| mt.crack_vertices()[v.idx()]).collect();
     // Components are the MT's business (`Mt::nb_components`): counting them on every
     // frontier-first cut would cost a pass over the current mesh.
     let options = mt.options().with_count_components(false);
-    let mut cutter = Cutter::for_mt_frontier(mesh, scales, options)?;
+    let mut cutter = Cutter::for_mt_frontier(mesh, scales, crack, options)?;
     cutter.keep_room(ROOM);
     Ok(cutter)
 }

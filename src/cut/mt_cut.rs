@@ -37,18 +37,25 @@
 //!    the plane up to rounding: degenerate cuts (through vertices, along edges and faces).
 //!
 //!    **A cut continuing an earlier one in its plane** (a blade swept in steps, each
-//!    step cutting the quadrilateral it swept) meets the earlier crack's vertices on its
-//!    plane: its tips (face points, which the face-point margin keeps off the earlier
-//!    contour) on the new polygon's contour, and the lips behind it. Two rules keep every
-//!    level consistent there. A vertex on the plane within a *contour band* outside C
-//!    (twice the face-point margin, at most 5% of the vertex's scale: `contour_band`)
-//!    counts as on the cut, so the earlier tips join the crack and are duplicated once
-//!    surrounded by it, instead of being met by new tips a rounding error away. A vertex
-//!    on the plane farther outside C is not cut, and its exact side is rounding noise; it
-//!    takes the side of the other vertices of its tets when those all lie on one side (one
-//!    decision per cluster of such vertices joined by edges), so a lip tet is not taken
-//!    for a tet C crosses and split into children lying flat between the lips
-//!    (`settle_plane_vertices`; tests/mtcut_cut.rs, `a_blade_swept_across_the_mt_stays_valid`).
+//!    step cutting the quadrilateral it swept, an incision extended, or a second one in
+//!    the plane of the first) meets the earlier crack's vertices on its plane: its tips
+//!    (face points, which the face-point margin keeps off the earlier contour) on the new
+//!    polygon's contour, and the lips behind it. Three rules keep every level consistent
+//!    there. A vertex on the plane within a *contour band* outside C (twice the
+//!    face-point margin, at most 5% of the vertex's scale: `contour_band`) counts as on
+//!    the cut, so the earlier tips join the crack and are duplicated once surrounded by
+//!    it, instead of being met by new tips a rounding error away. A vertex of an earlier
+//!    crack ([`MtCutter::crack_vertices`]) on the plane up to rounding farther outside C
+//!    is on neither side ([`OUT`]): no edge at it is crossed and no face with two
+//!    vertices on the plane holds a face point, so the two lips and the tips they share
+//!    see the same faces alike; with their exact sides, rounding noise, a lip
+//!    face next to a snapped vertex got a face point where the other lip's face, at the
+//!    same place, did not (tests/mt_scalpel.rs, the T and X incisions). Any other vertex
+//!    within snapping distance of the plane outside C is not cut; it takes the side of the
+//!    other vertices of its tets when those all lie on one side (one decision per cluster
+//!    of such vertices joined by edges), so a lip tet is not taken for a tet C crosses and
+//!    split into children lying flat between the lips (`settle_plane_vertices`;
+//!    tests/mtcut_cut.rs, `a_blade_swept_across_the_mt_stays_valid`).
 //!
 //!    **Which snapped vertices are duplicated** is decided once per vertex over all
 //!    levels: a vertex the cut passes through gets one copy, used by the negative tets of
@@ -148,7 +155,7 @@ use super::cutter::{push_origin_rows, unsnap, with_twins};
 use super::options::{CutError, CutOptions};
 use super::split::{Children, split_tet};
 use super::stamps::Stamps;
-use super::tables::{NEG, ON, POS, Side};
+use super::tables::{NEG, ON, OUT, POS, Side};
 use super::unglue::{StarEntry, plan_copies};
 use crate::geom::{Aabb, CutPolygon, DVec3};
 use crate::mesh::fxhash::FxBuild;
@@ -281,6 +288,8 @@ pub struct MtCutter {
     /// The MT's number of independent components (changed only by a cut that splits
     /// fragments).
     components: usize,
+    /// Per vertex: whether it lies on a crack ([`MtCutter::crack_vertices`]).
+    crack: Vec<bool>,
 }
 
 /// Largest `snap` an MT cut accepts (see the module docs, "Limits").
@@ -370,6 +379,7 @@ impl MtCutter {
         // What the first cut would pay for in proportion to the pool, paid here: the
         // per-tet links of the open form, and room to append to the pool.
         let links = Some(mt.tet_links());
+        let crack = shared_positions(mt.positions());
         let components = mt.nb_components();
         let mut mt = mt;
         mt.reserve_edit_room();
@@ -387,6 +397,7 @@ impl MtCutter {
             split_off,
             links,
             components,
+            crack,
         })
     }
 
@@ -394,6 +405,16 @@ impl MtCutter {
         self.mt
             .as_ref()
             .expect("MtCutter holds its MT between cuts")
+    }
+
+    /// Per MT vertex: whether it lies on a crack — made by a cut of this cutter (cut
+    /// points, face points, copies and the vertices copied), or, in the MT it was made
+    /// with, sharing its position with another vertex (the lips of cracks made before the
+    /// MT was saved; their face points are not recognised). A cut in the plane of an
+    /// earlier crack takes these as neither side when they lie on its plane outside its
+    /// polygon ([`StateClassifier::with_crack_vertices`]).
+    pub fn crack_vertices(&self) -> &[bool] {
+        &self.crack
     }
 
     pub fn into_mt(self) -> Mt {
@@ -481,7 +502,8 @@ impl MtCutter {
 
         // Step 1: fragments by box, then the tets they create by vertex states.
         let classifier = StateClassifier::new(polygon, opts.snap, &bounds, self.max_scale)
-            .with_contour_band(contour_band(&opts));
+            .with_contour_band(contour_band(&opts))
+            .with_crack_vertices(&self.crack);
         let coord = bounds.min.abs().max(self.bounds.max.abs()).max_element();
         let slack = 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element());
         let margin = (2.0 * opts.snap.relative + contour_band(&opts)) * self.max_scale + slack;
@@ -780,6 +802,23 @@ impl MtCutter {
         }
         let is_cut_vertex =
             |v: VertexId| v.0 != GHOST.0 && (v >= first_new || around.contains_key(&v));
+        // `OUT` vertices of the tets the cut changes: a crack opening from a snapped vertex
+        // may reach one (an earlier crack's vertex in the same plane), so the faces of the
+        // opening hold them; faces made of them only are the earlier crack's, not this cut's.
+        let mut out_vertices: Vec<VertexId> = Vec::new();
+        for (k, class) in classes.iter().enumerate() {
+            if child_of[k] != NONE || class.touches_cut() {
+                let out = (0..4).filter(|&j| class.states[j] == OUT);
+                out_vertices.extend(out.map(|j| tets[k][j]));
+            }
+        }
+        out_vertices.sort_unstable();
+        out_vertices.dedup();
+        let on_crack = |f: [VertexId; 3]| {
+            f.iter()
+                .all(|&v| is_cut_vertex(v) || out_vertices.binary_search(&v).is_ok())
+                && f.iter().any(|&v| is_cut_vertex(v))
+        };
         let for_side = |t: Tet, side: Side| -> Tet {
             if side == Side::Negative {
                 t.map(|v| copy_of.get(&v).copied().unwrap_or(v))
@@ -909,11 +948,14 @@ impl MtCutter {
         let new_positions = origin_positions(&open.positions, &origins);
         open.positions.extend(new_positions);
         push_origin_rows(&mut open.point_data, &mut self.scales, &origins);
+        self.crack.resize(open.positions.len(), true);
         for &v in &copies {
             let p = open.positions[v.idx()];
             open.positions.push(p);
             open.point_data.push_copy(v.idx());
             self.scales.push(self.scales[v.idx()]);
+            self.crack[v.idx()] = true;
+            self.crack.push(true);
         }
         // Real tets: children in place of their parents, unsplit tets on the negative side
         // take copies. `touched` lists every real tet the cut changed or may have made a
@@ -977,7 +1019,7 @@ impl MtCutter {
         // level may hold the opposite face on the other side of the crack: snapping bends
         // the cut surface differently on each level.)
         let mut present: HashMap<FaceKey, Vec<u32>, FxBuild> = HashMap::default();
-        let all_cut = |t: &Tet, f: &[usize; 3]| f.iter().all(|&j| is_cut_vertex(t[j]));
+        let all_cut = |t: &Tet, f: &[usize; 3]| on_crack(f.map(|j| t[j]));
         for &t in &touched {
             let tet = open.tets[t as usize];
             for (lf, f) in TET_FACES.iter().zip(faces_of(&tet)) {
@@ -988,7 +1030,7 @@ impl MtCutter {
         }
         for &g in &ghost_touched {
             let t = open.tets[g as usize];
-            if t[..3].iter().all(|&v| is_cut_vertex(v)) {
+            if on_crack([t[0], t[1], t[2]]) {
                 present
                     .entry(flip_face(oriented_face(t[0].0, t[1].0, t[2].0)))
                     .or_default()
@@ -1449,7 +1491,7 @@ pub(crate) fn settle_plane_vertices(
     tet_of: impl Fn(TetId) -> Tet,
 ) {
     let near = |v: VertexId, s: u8| {
-        s != ON
+        (s == POS || s == NEG)
             && polygon.signed_distance(positions[v.idx()]).abs()
                 <= opts.snap.distance(scales[v.idx()])
     };
@@ -1485,7 +1527,7 @@ pub(crate) fn settle_plane_vertices(
         }
         let tet = tet_of(t);
         let mut others = 0u8;
-        for j in (0..4).filter(|&j| flag & (1 << j) == 0 && s[j] != ON) {
+        for j in (0..4).filter(|&j| flag & (1 << j) == 0 && (s[j] == POS || s[j] == NEG)) {
             others |= 1 << s[j];
         }
         let mut first = None;
@@ -1689,4 +1731,19 @@ fn split_fragment(tets: &[Tet], positions: &[DVec3], floor: &[u32], ceiling: &[u
             label[r]
         })
         .collect()
+}
+
+/// Per vertex: whether another vertex has the same position (bit for bit).
+fn shared_positions(positions: &[DVec3]) -> Vec<bool> {
+    let mut order: Vec<u32> = (0..positions.len() as u32).collect();
+    let key = |i: u32| positions[i as usize].to_array().map(f64::to_bits);
+    order.sort_unstable_by_key(|&i| key(i));
+    let mut shared = vec![false; positions.len()];
+    for w in order.windows(2) {
+        if key(w[0]) == key(w[1]) {
+            shared[w[0] as usize] = true;
+            shared[w[1] as usize] = true;
+        }
+    }
+    shared
 }

@@ -23,6 +23,14 @@
 //!   configurations have no such tiling (the search finds none up to 16 tets), and the
 //!   cut never places a face point off its segment.
 //!
+//! An [`OUT`] vertex (on the plane outside C: an earlier crack's, see [`super::tables`]) is
+//! a section point outside C. Between it and an `ON` vertex the section runs along their
+//! edge, which holds no point: the crack polygon goes straight from the `ON` vertex to the
+//! next point in C or face point, and when that leaves it fewer than three points (the
+//! `ON` vertex and one face point), the tet holds no crack: its children only bring the
+//! face point in, and the sides meet at the `ON` vertex, whose copies open the faces in
+//! the plane between it and the `OUT` vertex.
+//!
 //! # How it is found
 //!
 //! The crack opens the tet along K into a *slit domain* whose boundary is the subdivided
@@ -49,8 +57,8 @@
 //! generator would report a configuration without tiling instead of emitting it.
 
 use super::tables::{
-    CutCase, NB_CONFIGS, NEG, ON, POS, Side, config_index, edge_point, face_point, face_points,
-    is_crossed, is_valid_config,
+    CutCase, NB_CONFIGS, NEG, ON, OUT, POS, Side, config_index, edge_point, face_point,
+    face_points, is_crossed, is_valid_config,
 };
 use crate::mesh::tables::{EDGE_OF_VERTICES, TET_EDGES, TET_FACES};
 use std::collections::HashMap;
@@ -120,7 +128,7 @@ fn is_cut(cut_mask: u8, e: usize) -> bool {
 
 fn sec_inside(a: &Analysis, p: SecPt) -> bool {
     match p {
-        SecPt::Vertex(_) => true,
+        SecPt::Vertex(i) => a.states[i] == ON,
         SecPt::Edge(e) => is_cut(a.cut_mask, e),
     }
 }
@@ -151,7 +159,7 @@ fn common_face(p: SecPt, q: SecPt) -> Option<usize> {
 
 fn analyze(states: [u8; 4], cut_mask: u8) -> Analysis {
     let mut pts: Vec<SecPt> = (0..4)
-        .filter(|&i| states[i] == ON)
+        .filter(|&i| states[i] == ON || states[i] == OUT)
         .map(SecPt::Vertex)
         .collect();
     pts.extend(
@@ -197,7 +205,10 @@ fn analyze(states: [u8; 4], cut_mask: u8) -> Analysis {
                     SecPt::Edge(e) => (edge_point(e, true), edge_point(e, false)),
                 });
             }
-            if ip != iq {
+            // An `ON` and an `OUT` vertex: the section runs along their edge, which holds
+            // no point; the crack ends at the `ON` vertex.
+            let along_edge = matches!((p, q), (SecPt::Vertex(_), SecPt::Vertex(_)));
+            if ip != iq && !along_edge {
                 let f = common_face(p, q).expect("an in/out section edge lies on one face");
                 assert!(
                     a.face_point[f],
@@ -622,6 +633,21 @@ fn quality(geoms: &[Geometry], children: &[[u8; 4]]) -> (f64, f64) {
     (worst, per.iter().sum::<f64>() / per.len() as f64)
 }
 
+/// The seed of a configuration's samples: its index in the tables before the [`OUT`] state
+/// (three states, `3⁴ × 64` configurations) when it has no `OUT` vertex, so those entries
+/// stay what they were; past that range otherwise.
+fn sample_seed(states: [u8; 4], cut_mask: u8) -> usize {
+    if states.contains(&OUT) {
+        81 * 64 + config_index(states, cut_mask)
+    } else {
+        let code = states[0] as usize
+            + 3 * states[1] as usize
+            + 9 * states[2] as usize
+            + 27 * states[3] as usize;
+        code * 64 + cut_mask as usize
+    }
+}
+
 /// Generates the entry of one configuration, or `None` when the tet is not split.
 /// Panics if a split configuration has no tiling (it would need a Steiner point); the
 /// module docs explain why that does not happen, and the tests check it.
@@ -632,9 +658,10 @@ pub fn generate_entry(states: [u8; 4], cut_mask: u8) -> Option<Entry> {
     let case = CutCase::of_config(states, cut_mask)?;
     let a = analyze(states, cut_mask);
     let config = config_index(states, cut_mask);
-    let mut rng = Rng(0x5EED_0000 + config as u64);
+    let seed = sample_seed(states, cut_mask) as u64;
+    let mut rng = Rng(0x5EED_0000 + seed);
     let geoms = samples(&a, &mut rng, 256);
-    let quality_geoms = realistic_samples(&a, &mut Rng(0xC0FFEE + config as u64), 256);
+    let quality_geoms = realistic_samples(&a, &mut Rng(0xC0FFEE + seed), 256);
     // Points present.
     let mut points: Vec<u8> = (0..4).collect();
     for e in 0..6 {
@@ -666,7 +693,10 @@ pub fn generate_entry(states: [u8; 4], cut_mask: u8) -> Option<Entry> {
                     // Cut points, face points and snapped vertices all lie on the cut plane
                     // (up to snapping): a child made of them only is flat, whatever its
                     // barycentric volume for unconstrained positions says.
-                    if !c.iter().any(|&p| p < 4 && states[p as usize] != ON) {
+                    if !c
+                        .iter()
+                        .any(|&p| p < 4 && matches!(states[p as usize], POS | NEG))
+                    {
                         continue;
                     }
                     let mut sign = 0.0f64;
@@ -713,8 +743,16 @@ pub fn generate_entry(states: [u8; 4], cut_mask: u8) -> Option<Entry> {
     // (children count, quality, children) of the best tiling so far.
     type Best = (usize, (f64, f64), Vec<[u8; 4]>);
     let mut best: Option<Best> = None;
+    // A crack of fewer than three points has no area: an `ON` vertex whose section
+    // neighbours are out of C, one of them an `OUT` vertex (the crack reaches this tet at
+    // the vertex and the face point beside it, and opens nowhere inside it).
     let m = a.crack.len();
-    for tri in polygon_triangulations(m) {
+    let triangulations = if m < 3 {
+        vec![Vec::new()]
+    } else {
+        polygon_triangulations(m)
+    };
+    for tri in triangulations {
         let mut bdry = face_bdry.clone();
         for t in &tri {
             let plus = t.map(|k| a.crack[k].0);

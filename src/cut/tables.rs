@@ -13,10 +13,11 @@
 //!
 //! # Configuration
 //!
-//! Each vertex is [`NEG`], [`ON`] (snapped onto the cut inside C) or [`POS`]; an edge whose
-//! ends are `NEG` and `POS` is *crossed* by the plane, and *cut* when it is crossed strictly
-//! inside C. A configuration is the four states plus the cut-edge mask; everything else
-//! (section polygon, face points, crack polygon) follows from it ([`face_has_point`]).
+//! Each vertex is [`NEG`], [`ON`] (snapped onto the cut inside C), [`POS`] or [`OUT`] (on
+//! the plane outside C: an earlier crack's vertex); an edge whose ends are `NEG` and `POS`
+//! is *crossed* by the plane, and *cut* when it is crossed strictly inside C. A
+//! configuration is the four states plus the cut-edge mask; everything else (section
+//! polygon, face points, crack polygon) follows from it ([`face_has_point`]).
 //!
 //! # Local points of a child
 //!
@@ -33,9 +34,16 @@ pub const ON: u8 = 1;
 /// Vertex state: strictly on the positive side of the cut plane (or exactly on the plane
 /// but outside C, a symbolic perturbation that costs nothing: such a vertex is not cut).
 pub const POS: u8 = 2;
+/// Vertex state: on the plane to rounding but outside C — the vertices of an earlier
+/// crack in the same plane that the new polygon does not cover (its lips and tips). Edges
+/// at such a vertex are never crossed (the plane meets them at the vertex, outside C),
+/// and a face with two vertices on the plane never holds a face point (the plane meets it
+/// along that edge). An exact side would be rounding noise: the two lips of the old
+/// crack, which share its tips, would then disagree about faces they both touch.
+pub const OUT: u8 = 3;
 
-/// Number of configurations: 3⁴ vertex states × 2⁶ cut-edge masks (most masks are invalid).
-pub const NB_CONFIGS: usize = 81 * 64;
+/// Number of configurations: 4⁴ vertex states × 2⁶ cut-edge masks (most masks are invalid).
+pub const NB_CONFIGS: usize = 256 * 64;
 
 /// Number of local point slots (4 vertices, 6 × 2 edge-point copies, 4 face points).
 pub const NB_LOCAL_POINTS: usize = 20;
@@ -56,16 +64,16 @@ pub const fn face_point(f: usize) -> u8 {
 #[inline]
 pub fn config_index(states: [u8; 4], cut_mask: u8) -> usize {
     let code = states[0] as usize
-        + 3 * states[1] as usize
-        + 9 * states[2] as usize
-        + 27 * states[3] as usize;
+        | (states[1] as usize) << 2
+        | (states[2] as usize) << 4
+        | (states[3] as usize) << 6;
     code * 64 + cut_mask as usize
 }
 
 /// The states and cut mask of configuration `index` (inverse of [`config_index`]).
 pub fn config_of_index(index: usize) -> ([u8; 4], u8) {
     let (code, mask) = (index / 64, (index % 64) as u8);
-    let s = [code % 3, code / 3 % 3, code / 9 % 3, code / 27 % 3].map(|x| x as u8);
+    let s = [code & 3, code >> 2 & 3, code >> 4 & 3, code >> 6 & 3].map(|x| x as u8);
     (s, mask)
 }
 
@@ -78,19 +86,22 @@ pub fn is_crossed(a: u8, b: u8) -> bool {
 /// Whether a face whose three vertices have `states` and whose edges (`k` joins vertices
 /// `k` and `k+1 mod 3`) have cut flags `cut` holds a face point.
 ///
-/// The plane meets the face in a segment whose ends are the face's `ON` vertices and the
-/// crossing points of its crossed edges; an end is *in* C when it is an `ON` vertex or the
-/// point of a cut edge. C's contour crosses the segment exactly when one end is in and the
-/// other out — a face with exactly one cut edge in the paper's words (§4.1), extended to
-/// segments ending at a snapped vertex. Both tets sharing a face call this with the same
-/// data, so they agree.
+/// The plane meets the face in a segment whose ends are the face's `ON` and `OUT` vertices
+/// and the crossing points of its crossed edges; an end is *in* C when it is an `ON` vertex
+/// or the point of a cut edge. C's contour crosses the segment exactly when one end is in
+/// and the other out — a face with exactly one cut edge in the paper's words (§4.1),
+/// extended to segments ending at a vertex on the plane. A segment joining two vertices on
+/// the plane is an edge of the face, not its inside: no face point. Both tets sharing a
+/// face call this with the same data, so they agree.
 pub fn face_has_point(states: [u8; 3], cut: [bool; 3]) -> bool {
     let mut ends = 0;
     let mut inside = 0;
+    let mut on_plane = 0;
     for k in 0..3 {
-        if states[k] == ON {
+        if states[k] == ON || states[k] == OUT {
             ends += 1;
-            inside += 1;
+            on_plane += 1;
+            inside += usize::from(states[k] == ON);
         }
         if is_crossed(states[k], states[(k + 1) % 3]) {
             ends += 1;
@@ -99,7 +110,7 @@ pub fn face_has_point(states: [u8; 3], cut: [bool; 3]) -> bool {
             }
         }
     }
-    ends == 2 && inside == 1
+    ends == 2 && inside == 1 && on_plane < 2
 }
 
 /// Face-point flags of the four faces of a tet in configuration (`states`, `cut_mask`).
@@ -219,9 +230,9 @@ impl CutCase {
                     CutCase::D
                 }
             }
-            (1, c, k) if c == k => CutCase::Vertex1,
+            (1, c, k) if c == k && !fp.contains(&true) => CutCase::Vertex1,
             (1, _, _) => CutCase::Vertex1Partial,
-            (_, c, k) if c == k => CutCase::Vertex2,
+            (_, c, k) if c == k && !fp.contains(&true) => CutCase::Vertex2,
             _ => CutCase::Vertex2Partial,
         })
     }
