@@ -273,8 +273,8 @@ pub struct StateClassifier<'a> {
     snap: Tolerance,
     normal: DVec3,
     offset: f64,
-    /// Rounding bound of the dot product over the whole mesh, times
-    /// [`ON_PLANE_ROUNDING`]: nearer than this a vertex may be [`OUT`].
+    /// Rounding bound of the dot product over the whole mesh (times [`ON_PLANE_ROUNDING`]
+    /// with crack vertices: nearer than this a vertex may be [`OUT`]).
     filter: f64,
     /// Beyond this distance no vertex of the pool can be snapped.
     far: f64,
@@ -306,8 +306,8 @@ impl<'a> StateClassifier<'a> {
             snap,
             normal: polygon.plane().normal,
             offset: polygon.plane().offset,
-            filter: ON_PLANE_ROUNDING * filter,
-            far: snap.distance(max_scale).max(ON_PLANE_ROUNDING * filter),
+            filter,
+            far: snap.distance(max_scale).max(filter),
             band: 0.0,
             tips: None,
             tip_reach: 0.0,
@@ -326,6 +326,8 @@ impl<'a> StateClassifier<'a> {
     /// of the body the plane merely passes through, open the body outside C.
     pub fn with_crack_vertices(mut self, crack: &'a [bool]) -> Self {
         self.crack = Some(crack);
+        self.filter *= ON_PLANE_ROUNDING;
+        self.far = self.far.max(self.filter);
         self
     }
 
