@@ -13,7 +13,7 @@
 mod blades;
 mod cut_common;
 
-use blades::{shallow_path, vertical};
+use blades::{shallow_path, tilting, vertical};
 use cut_common::{MESHES, mesh};
 use mtcut::cut::{Blade, Components, CutOptions, Cutter, MIN_FACE_POINT_MARGIN};
 use mtcut::geom::{Aabb, DVec3, Tolerance, scalpel_sweep};
@@ -150,16 +150,7 @@ fn a_tilting_blade_across_the_body_leaves_two_parts() {
     for name in MESHES {
         let mut run = Run::new(name, CutOptions::SCALPEL);
         let b = run.bounds();
-        let (c, d) = (b.center(), b.max - b.min);
-        let blade = |k: usize| {
-            let x = b.min.x - 0.05 * d.x + 1.1 * d.x * k as f64 / 10.0;
-            let tilt = 0.06 * d.y * ((k as f64) * 0.9).sin();
-            [
-                DVec3::new(x, c.y + tilt, b.min.z - 0.1 * d.z),
-                DVec3::new(x, c.y - tilt + 0.01 * d.y, b.max.z + 0.1 * d.z),
-            ]
-        };
-        let path: Vec<Blade> = (0..=10).map(blade).collect();
+        let path: Vec<Blade> = (0..=10).map(|k| tilting(&b, k)).collect();
         run.sweep("tilting", &path);
         assert_eq!(run.parts(), 2, "{name}");
     }

@@ -16,11 +16,13 @@
 //! * A blade moving in its own plane (every step coplanar with the last, cutting through
 //!   the body's depth) keeps every level valid and separates the body when it has crossed
 //!   it.
+//! * So do an incision ending inside the body and extended later, and a second incision
+//!   ending on the first (T) or crossing it (X), in any plane (tests/mt_scalpel.rs).
 //! * A step at an angle to the last (a turning path, a tilting blade) meets the last
-//!   step's crack tips off its plane and breaks the coarser levels; so can a shallow
-//!   incision (blade ending inside the body) after several steps, and a second incision
-//!   meeting the first. Callers should check [`Mt::validate`] after each step (the CLI
-//!   does, and stops there).
+//!   step's crack at an angle and breaks the coarser levels (see [`super::mt_cut`]'s
+//!   limits: one copy per snapped vertex cannot follow two cracks meeting at an angle).
+//!   Callers should check [`Mt::validate`] after each step (the CLI does, and stops
+//!   there).
 
 use super::mt_cut::{MtCutStats, MtCutter};
 use super::options::{CutError, CutOptions, MIN_FACE_POINT_MARGIN};

@@ -29,3 +29,16 @@ pub fn shallow_path(b: &Aabb, from: (f64, f64), to: (f64, f64), steps: usize) ->
         })
         .collect()
 }
+
+/// A blade crossing the body in x in ten steps, leaning a little more or less at each
+/// step (by up to 6% of the body's y extent), so every sweep is non-planar (two triangles)
+/// and continues the last at an angle. (More lean folds a sweep over itself on pinion.)
+pub fn tilting(b: &Aabb, k: usize) -> Blade {
+    let (c, d) = (b.center(), b.max - b.min);
+    let x = b.min.x - 0.05 * d.x + 1.1 * d.x * k as f64 / 10.0;
+    let tilt = 0.06 * d.y * ((k as f64) * 0.9).sin();
+    [
+        DVec3::new(x, c.y + tilt, b.min.z - 0.1 * d.z),
+        DVec3::new(x, c.y - tilt + 0.01 * d.y, b.max.z + 0.1 * d.z),
+    ]
+}
