@@ -113,8 +113,9 @@
 //! * **Almost no snapping** (`snap` at most [`MAX_MT_SNAP`]; [`MtCutter::DEFAULT_OPTIONS`]
 //!   has 1e-6, enough to keep cut points off the vertices' rounding, where 0 made inverted
 //!   children in the tests). Snapping a vertex near the plane onto the cut bends the cut
-//!   surface through it, and the side of a tet whose other vertices are all snapped is the side of its remaining vertex: two tets of
-//!   different levels on the same side of a snapped triangle can then take different sides,
+//!   surface through it, and the side of a tet whose other vertices are all snapped is
+//!   the side of its remaining vertex: two tets of different levels on the same side of a
+//!   snapped triangle can then take different sides,
 //!   so a fragment's floor sees the crack open at a face of its region's boundary where its
 //!   ceiling sees it closed — the MT condition (floor and ceiling with the same boundary)
 //!   breaks. Measured on the shared meshes with the engine's default 0.2; fixing it needs
