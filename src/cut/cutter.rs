@@ -80,23 +80,79 @@ pub struct Cutter {
 
 /// The vertices snapped onto the cut (sorted, distinct). `mark` has an entry per vertex,
 /// all `NONE`, and is left so.
-fn snapped_vertices(tets: &[Tet], classes: &[TetClass], mark: &mut [u32]) -> Vec<VertexId> {
-    let mut snapped: Vec<VertexId> = Vec::new();
-    for (tet, c) in tets.iter().zip(classes) {
-        if c.touches_cut() {
-            for (j, &s) in c.states.iter().enumerate() {
-                if s == ON && mark[tet[j].idx()] == NONE {
-                    mark[tet[j].idx()] = 0;
-                    snapped.push(tet[j]);
+/// The snapped vertices of a cut (sorted) and where each lies in the candidates: the
+/// (candidate, local index) pairs of vertex `vertices[i]` are `at[start[i]..start[i + 1]]`,
+/// in candidate order. Built once per cut: unsnapping a vertex changes the classes of the
+/// tets around it but not which candidates hold the vertices still snapped, so every plan
+/// pass reads its vertices' runs here instead of scanning the candidates again.
+struct StarIndex {
+    vertices: Vec<VertexId>,
+    start: Vec<u32>,
+    at: Vec<(u32, u8)>,
+}
+
+impl StarIndex {
+    /// `mark` is a per-vertex scratch array holding `NONE` everywhere, as it is left.
+    fn new(tets: &[Tet], classes: &[TetClass], mark: &mut [u32]) -> StarIndex {
+        let mut vertices: Vec<VertexId> = Vec::new();
+        for (tet, c) in tets.iter().zip(classes) {
+            if c.touches_cut() {
+                for (j, &s) in c.states.iter().enumerate() {
+                    if s == ON && mark[tet[j].idx()] == NONE {
+                        mark[tet[j].idx()] = 0;
+                        vertices.push(tet[j]);
+                    }
                 }
             }
         }
+        vertices.sort_unstable();
+        for (i, v) in vertices.iter().enumerate() {
+            mark[v.idx()] = i as u32;
+        }
+        // A counting sort: candidates stay in order within each run.
+        let mut start = vec![0u32; vertices.len() + 1];
+        for (tet, c) in tets.iter().zip(classes) {
+            if c.touches_cut() {
+                for (&v, &state) in tet.iter().zip(&c.states) {
+                    if state == ON {
+                        start[mark[v.idx()] as usize + 1] += 1;
+                    }
+                }
+            }
+        }
+        for i in 0..vertices.len() {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut at = vec![(0u32, 0u8); start[vertices.len()] as usize];
+        for (k, (tet, c)) in tets.iter().zip(classes).enumerate() {
+            if c.touches_cut() {
+                for (j, (&v, &state)) in tet.iter().zip(&c.states).enumerate() {
+                    if state == ON {
+                        let s = mark[v.idx()] as usize;
+                        at[fill[s] as usize] = (k as u32, j as u8);
+                        fill[s] += 1;
+                    }
+                }
+            }
+        }
+        for v in &vertices {
+            mark[v.idx()] = NONE;
+        }
+        StarIndex {
+            vertices,
+            start,
+            at,
+        }
     }
-    for v in &snapped {
-        mark[v.idx()] = NONE;
+
+    /// The (candidate, local index) pairs of snapped vertex `v`.
+    fn run(&self, v: VertexId) -> &[(u32, u8)] {
+        match self.vertices.binary_search(&v) {
+            Ok(i) => &self.at[self.start[i] as usize..self.start[i + 1] as usize],
+            Err(_) => &[],
+        }
     }
-    snapped.sort_unstable();
-    snapped
 }
 
 impl Cutter {
@@ -454,7 +510,8 @@ impl Cutter {
         if self.snapped_slot.len() < n_vertices {
             self.snapped_slot.resize(n_vertices, NONE);
         }
-        let mut snapped = snapped_vertices(&tets, &classes, &mut self.snapped_slot);
+        let star = StarIndex::new(&tets, &classes, &mut self.snapped_slot);
+        let mut snapped = star.vertices.clone();
         let snapped = loop {
             passes += 1;
             let t = Instant::now();
@@ -468,13 +525,6 @@ impl Cutter {
                         .filter(|v| snapped.binary_search(v).is_ok())
                         .collect(),
                 };
-                let slots = &mut self.snapped_slot;
-                if slots.len() < self.mesh.nb_vertices() {
-                    slots.resize(self.mesh.nb_vertices(), NONE);
-                }
-                for (i, v) in examine.iter().enumerate() {
-                    slots[v.idx()] = i as u32;
-                }
                 let update = Self::plan_pass(
                     &self.mesh,
                     polygon,
@@ -483,12 +533,9 @@ impl Cutter {
                     &children,
                     &child_of,
                     &examine,
-                    slots,
+                    &star,
                     &mut self.links,
                 );
-                for v in &examine {
-                    slots[v.idx()] = NONE;
-                }
                 copies = match &redo {
                     None => update,
                     Some(r) => std::mem::take(&mut copies).merge(r, update),
@@ -740,12 +787,11 @@ impl Cutter {
         })
     }
 
-    /// The copies of the snapped vertices `examine` (each with its index in `slots`, `NONE`
-    /// for every other vertex), from the candidates around them as planned so far: each
-    /// vertex decided from the tets around it when [`plan_by_parents`] can, from their
-    /// children otherwise ([`plan_vertex`]). The tets taking a copy are named by virtual
-    /// slots: candidate `k`'s child `c` is `32 k + c` (child 0 of a split tet, and an
-    /// unsplit tet, take the tet's slot).
+    /// The copies of the snapped vertices `examine` (their candidates in `star`), from the
+    /// candidates around them as planned so far: each vertex decided from the tets around
+    /// it when [`plan_by_parents`] can, from their children otherwise ([`plan_vertex`]).
+    /// The tets taking a copy are named by virtual slots: candidate `k`'s child `c` is
+    /// `32 k + c` (child 0 of a split tet, and an unsplit tet, take the tet's slot).
     #[allow(clippy::too_many_arguments)]
     fn plan_pass(
         mesh: &TetMesh,
@@ -755,46 +801,11 @@ impl Cutter {
         children: &[Children],
         child_of: &[u32],
         examine: &[VertexId],
-        slots: &[u32],
+        star: &StarIndex,
         links: &mut LinkSlots,
     ) -> Copies {
-        let slot_of = |v: VertexId| slots.get(v.idx()).copied().unwrap_or(NONE);
-        // (candidate, local index) of every examined vertex in every candidate, bucketed by
-        // vertex (a counting sort: candidates stay in order).
-        let mut start = vec![0u32; examine.len() + 1];
-        for (tet, c) in tets.iter().zip(classes) {
-            if c.touches_cut() {
-                for (&v, &state) in tet.iter().zip(&c.states) {
-                    let s = slot_of(v);
-                    if state == ON && s != NONE {
-                        start[s as usize + 1] += 1;
-                    }
-                }
-            }
-        }
-        for i in 0..examine.len() {
-            start[i + 1] += start[i];
-        }
-        let mut fill = start.clone();
-        let mut at = vec![(0u32, 0u8); start[examine.len()] as usize];
-        // The side of each whole candidate around them (`Side` of `unsplit_side`).
-        let mut whole_side = vec![Side::Straddle; classes.len()];
-        for (k, (tet, c)) in tets.iter().zip(classes).enumerate() {
-            if c.touches_cut() {
-                let mut any = false;
-                for (j, (&v, &state)) in tet.iter().zip(&c.states).enumerate() {
-                    let s = slot_of(v);
-                    if state == ON && s != NONE {
-                        at[fill[s as usize] as usize] = (k as u32, j as u8);
-                        fill[s as usize] += 1;
-                        any = true;
-                    }
-                }
-                if any && child_of[k] == NONE {
-                    whole_side[k] = Self::unsplit_side(mesh, polygon, &tets[k], &c.states);
-                }
-            }
-        }
+        // The side of a whole candidate around a snapped vertex (`Side` of `unsplit_side`).
+        let whole_side = |k: usize| Self::unsplit_side(mesh, polygon, &tets[k], &classes[k].states);
         let mut out = Copies::default();
         let mut scratch = PlanScratch::default();
         let mut around: Vec<ParentAt> = Vec::new();
@@ -803,7 +814,7 @@ impl Cutter {
         // children through v when split, itself when whole.
         let around_v = |v: VertexId, k: usize, f: &mut dyn FnMut(TetId, Tet, Side)| {
             if child_of[k] == NONE {
-                f(TetId((32 * k) as u32), tets[k], whole_side[k]);
+                f(TetId((32 * k) as u32), tets[k], whole_side(k));
             } else {
                 let ch = &children[child_of[k] as usize];
                 for c in 0..ch.len {
@@ -813,8 +824,8 @@ impl Cutter {
                 }
             }
         };
-        for (i, &v) in examine.iter().enumerate() {
-            let run = &at[start[i] as usize..start[i + 1] as usize];
+        for &v in examine {
+            let run = star.run(v);
             around.clear();
             for &(k, j) in run {
                 let (k, c) = (k as usize, &classes[k as usize]);
@@ -823,7 +834,7 @@ impl Cutter {
                         verts: tets[k],
                         states: c.states,
                         j,
-                        sides: if whole_side[k] == Side::Positive {
+                        sides: if whole_side(k) == Side::Positive {
                             1
                         } else {
                             2
