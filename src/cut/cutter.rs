@@ -321,7 +321,6 @@ impl Cutter {
     fn reserve_scratch(&mut self, n_vertices: usize) {
         self.scratch.reserve(n_vertices);
         self.state_cache.reserve(n_vertices);
-        self.links.reserve(n_vertices);
         if self.snapped_slot.len() < n_vertices {
             self.snapped_slot.resize(n_vertices, NONE);
         }
@@ -869,7 +868,7 @@ impl Cutter {
                     }
                     plan_vertex(v, entries, scratch, out);
                 };
-            let plan = plan_by_parents(&around, links, mesh.nb_vertices());
+            let plan = plan_by_parents(&around, links);
             let groups_before = out.groups.len();
             match plan {
                 ParentPlan::Keep => {}

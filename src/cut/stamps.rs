@@ -39,10 +39,4 @@ impl Stamps {
         self.stamp[i] = self.epoch;
         true
     }
-
-    /// Whether `i` is marked in this pass.
-    #[inline]
-    pub fn is_marked(&self, i: usize) -> bool {
-        self.stamp[i] == self.epoch
-    }
 }

@@ -252,14 +252,22 @@ fn side_bit(state: u8) -> u8 {
     }
 }
 
-/// Scratch of [`plan_by_parents`], kept by the cutter from one cut to the next: each mesh
-/// vertex's index in the link being examined (stamped, never cleared), and the link's
-/// edges as bit sets (only the first entries, as many as the link's vertices, are used and
-/// cleared).
+/// Slots of the small hash table mapping a link's vertices to their indices: twice the
+/// most vertices a link may have (64), so probes stay short.
+const LINK_TABLE: usize = 128;
+
+/// Scratch of [`plan_by_parents`], kept by the cutter from one cut to the next: each link
+/// vertex's index, in a small hash table of the link's own (a table per mesh vertex, read
+/// at scattered places, cost a cache miss per link vertex on a million-tet mesh: the plan
+/// of a vertex took twice as long there as on a 40k-tet one), and the link's edges as bit
+/// sets (only the first entries, as many as the link's vertices, are used and cleared).
 #[derive(Clone, Debug)]
 pub struct LinkSlots {
-    stamps: Stamps,
-    index: Vec<u8>,
+    /// Vertex id in each slot, valid where `epoch` holds the current link's.
+    keys: [u32; LINK_TABLE],
+    epoch: [u32; LINK_TABLE],
+    index: [u8; LINK_TABLE],
+    current: u32,
     /// Link edges met once, twice, and the joins of [`plan_by_parents`].
     adj: [u64; 64],
     adj2: [u64; 64],
@@ -272,8 +280,10 @@ pub struct LinkSlots {
 impl Default for LinkSlots {
     fn default() -> Self {
         LinkSlots {
-            stamps: Stamps::default(),
-            index: Vec::new(),
+            keys: [0; LINK_TABLE],
+            epoch: [0; LINK_TABLE],
+            index: [0; LINK_TABLE],
+            current: 0,
             adj: [0; 64],
             adj2: [0; 64],
             join: [0; 64],
@@ -283,17 +293,12 @@ impl Default for LinkSlots {
 }
 
 impl LinkSlots {
-    /// Starts a new link over a mesh of `n_vertices`.
-    fn begin(&mut self, n_vertices: usize) {
-        self.stamps.begin();
-        self.reserve(n_vertices);
-    }
-
-    /// Makes room for `n_vertices` (done ahead, the first cut does not pay for it).
-    pub fn reserve(&mut self, n_vertices: usize) {
-        if self.stamps.len() < n_vertices {
-            self.stamps.resize(n_vertices);
-            self.index.resize(n_vertices, 0);
+    /// Starts a new link: every slot free.
+    fn begin(&mut self) {
+        self.current = self.current.wrapping_add(1);
+        if self.current == 0 {
+            self.epoch = [0; LINK_TABLE];
+            self.current = 1;
         }
     }
 
@@ -301,18 +306,26 @@ impl LinkSlots {
     /// cleared) if new; `None` past 64 vertices.
     #[inline]
     fn get(&mut self, v: VertexId, m: &mut usize) -> Option<usize> {
-        let i = v.idx();
-        if !self.stamps.is_marked(i) {
-            if *m == 64 {
-                return None;
+        // Fibonacci hashing; linear probing (at most 64 of the 128 slots are taken).
+        let mut h = (v.0.wrapping_mul(0x9e37_79b9) >> 25) as usize;
+        loop {
+            if self.epoch[h] != self.current {
+                if *m == 64 {
+                    return None;
+                }
+                self.epoch[h] = self.current;
+                self.keys[h] = v.0;
+                self.index[h] = *m as u8;
+                self.adj[*m] = 0;
+                self.adj2[*m] = 0;
+                *m += 1;
+                return Some(self.index[h] as usize);
             }
-            self.stamps.mark(i);
-            self.index[i] = *m as u8;
-            self.adj[*m] = 0;
-            self.adj2[*m] = 0;
-            *m += 1;
+            if self.keys[h] == v.0 {
+                return Some(self.index[h] as usize);
+            }
+            h = (h + 1) % LINK_TABLE;
         }
-        Some(self.index[i] as usize)
     }
 }
 
@@ -357,11 +370,7 @@ fn connected(set: u64, adj: &[u64; 64]) -> bool {
 /// between two corners on the cut) are joined when on one side, as their children are.
 /// Links with a tet lying in the plane (three corners on the cut), an irregular entry,
 /// more than 64 vertices or an edge in three triangles are left to the children.
-pub fn plan_by_parents(
-    around: &[ParentAt],
-    links: &mut LinkSlots,
-    n_vertices: usize,
-) -> ParentPlan {
+pub fn plan_by_parents(around: &[ParentAt], links: &mut LinkSlots) -> ParentPlan {
     let sides = around.iter().fold(0, |m, a| m | a.sides);
     if sides != 3 {
         return ParentPlan::Keep;
@@ -369,7 +378,7 @@ pub fn plan_by_parents(
     if around.iter().any(|a| !a.regular) {
         return ParentPlan::Children;
     }
-    links.begin(n_vertices);
+    links.begin();
     let mut m = 0usize;
     let (mut pos, mut neg) = (0u64, 0u64);
     // Link edges, and those met twice.
