@@ -60,8 +60,8 @@ pub struct Cutter {
     bvh: TetBvh,
     scratch: CutScratch,
     state_cache: StateCache,
-    /// During a pass of the copy planning, the index of each vertex it examines; `NONE`
-    /// for every other vertex (and for all between passes).
+    /// While a cut indexes its snapped vertices ([`StarIndex`]), the index of each; `NONE`
+    /// for every other vertex (and for all once the index is built).
     snapped_slot: Vec<u32>,
     /// Scratch of the copy planning ([`plan_by_parents`]).
     links: LinkSlots,
@@ -78,8 +78,6 @@ pub struct Cutter {
     crack: Option<Vec<bool>>,
 }
 
-/// The vertices snapped onto the cut (sorted, distinct). `mark` has an entry per vertex,
-/// all `NONE`, and is left so.
 /// The snapped vertices of a cut (sorted) and where each lies in the candidates: the
 /// (candidate, local index) pairs of vertex `vertices[i]` are `at[start[i]..start[i + 1]]`,
 /// in candidate order. Built once per cut: unsnapping a vertex changes the classes of the
