@@ -82,7 +82,9 @@
 //!    separates it at the last step, far from the first ones — so cracked fragments
 //!    (remembered by the cutter, found again when it is created) take part in every cut
 //!    that changes the MT. Parts are then grouped by *body*: the parts and the
-//!    untouched fragments joined through the tets between them (the arcs). A fragment
+//!    untouched fragments joined through the tets between them (the arcs; those between
+//!    untouched fragments are followed only when the tets of the involved fragments leave
+//!    some fragment's parts apart, as a cut separating the body does). A fragment
 //!    whose parts lie in `k` bodies becomes `k` fragments (the first keeps its id, the
 //!    others are appended with its kind and error), each creating and destroying the tets
 //!    of its parts. The paper's `UpdateIncomingArcs` / `UpdateOutgoingArcs` are this
@@ -127,15 +129,17 @@
 //! * A vertex exactly on the cut whose tets in the finest mesh do not form one group per
 //!   side (the engine's *pinched* vertices and boundary saddles) is left unsnapped on every
 //!   level, as the engine does on a plain mesh; coarser levels are not analysed separately.
-//! * Closing the MT after a cut (the pool merged back into arcs, levels and arc lists
-//!   derived again) and grouping parts by body (a pass over the DAG's arcs) cost time in
-//!   proportion to the pool and the DAG, not to the cut; so does a cut that separates a
-//!   finest mesh (its root's ceiling is read), and counting the components after a cut
-//!   that splits fragments. What the first cut would also pay in proportion to the pool
-//!   is paid when the cutter is made ([`MtCutter::new`]): the open form's creator and
-//!   destroyer per pool tet (kept from cut to cut: 8 bytes per pool tet) and room for an
-//!   eighth more tets and vertices in the pool (kept by each close), so appending does
-//!   not copy it. Measured in `benches/table2.rs`.
+//! * Closing the MT after a cut (the pool merged back into arcs after a read-only check
+//!   of its order, levels and arc lists derived again, the vertex ids of every tet
+//!   checked) costs time in proportion to the pool and the DAG, not to the cut: the DAG
+//!   step of a cut of 76 cells on the fandisk-1m MT (3.8 M pool tets) took 30–47 ms. So
+//!   do grouping parts by body when a cut separates them (a pass over the DAG's arcs), a
+//!   cut that separates a finest mesh (its root's ceiling is read), and counting the
+//!   components after a cut that splits fragments. What the first cut would also pay in
+//!   proportion to the pool is paid when the cutter is made ([`MtCutter::new`]): the open
+//!   form's creator and destroyer per pool tet (kept from cut to cut: 8 bytes per pool
+//!   tet) and room for an eighth more tets and vertices in the pool (kept by each close),
+//!   so appending does not copy it. Measured in `benches/table2.rs`.
 //! * Every level is cut, so the pool grows with every cut by several tets per tet cut on
 //!   every level (the tests' 50 random cuts through fandisk take its pool from 0.15 M to
 //!   5.9 M tets).
@@ -1149,15 +1153,11 @@ impl MtCutter {
             slot[f.idx()] = i as u32;
         }
         // Bodies: the fragments, and the parts below, joined through the tets between them
-        // (the arcs). Between fragments not involved, the arcs before the cut still hold.
+        // (the arcs). Between fragments not involved, the arcs before the cut still hold:
+        // joined only when the parts' own tets leave some fragment's parts apart (below),
+        // as a pass over every arc of the DAG costs more than the rest of a small cut on a
+        // large MT.
         let mut body: Vec<u32> = (0..nf as u32).collect();
-        for f in 0..dag.dag.level.len() {
-            if !involved[f] {
-                for g in dag.succ(f).filter(|&g| !involved[g as usize]) {
-                    union(&mut body, f as u32, g);
-                }
-            }
-        }
         // Floor and ceiling of each involved fragment, in pool order: its ranges before
         // the cut, then the tets appended.
         let mut floor: Vec<Vec<u32>> = Vec::with_capacity(order.len());
@@ -1220,6 +1220,22 @@ impl MtCutter {
                     None => open.destroyer[t as usize].0,
                 };
                 union(&mut body, above, below);
+            }
+        }
+        // Parts joined through the tets of the involved fragments lie in one body whatever
+        // the rest of the DAG says; parts left apart may still be joined through fragments
+        // not involved.
+        let apart = (0..order.len()).any(|i| {
+            let root = find(&mut body, first_part[i]);
+            (first_part[i] + 1..first_part[i + 1]).any(|p| find(&mut body, p) != root)
+        });
+        if apart {
+            for f in 0..dag.dag.level.len() {
+                if !involved[f] {
+                    for g in dag.succ(f).filter(|&g| !involved[g as usize]) {
+                        union(&mut body, f as u32, g);
+                    }
+                }
             }
         }
         self.cracked.resize(nf, false);

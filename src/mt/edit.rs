@@ -7,15 +7,17 @@
 //! assembles the MT, deriving levels, boxes and arc lists with the same code as a build or
 //! a load, so an edit cannot leave them inconsistent. Three exceptions keep the cost of a
 //! small edit of a large MT near the size of the edit: the sort is a merge in place when
-//! little moved (its result does not depend on the editor's hint); an editor that lists
-//! the fragments whose box it may have changed ([`OpenMt::changed_fragments`]) keeps the
-//! others' boxes (the cut does; `Mt::validate` checks every box); and when the arcs come
-//! back joining the same fragments as when opened (an edit that adds no fragment and
-//! only moves tets into arcs the MT had), the arcs' ranges are updated from the moved
-//! tets alone, then checked against every tet (a read-only pass: the result still does
-//! not depend on the hint), and the DAG's tables are the opened MT's (`Mt::validate`
-//! derives levels again and compares). Appended vertices and tets need attribute rows; the editor pushes them
-//! (interpolated for vertices, inherited for tets, zeros for ghosts).
+//! little moved (its result does not depend on the editor's hint: the tets not said to
+//! move are checked to be in order, a read-only pass over the arc columns); an editor
+//! that lists the fragments whose box it may have changed ([`OpenMt::changed_fragments`])
+//! keeps the others' boxes (the cut does; `Mt::validate` checks every box); and when the
+//! arcs come back joining the same fragments as when opened (an edit that adds no
+//! fragment and only moves tets into arcs the MT had), the arcs' ranges are updated from
+//! the moved tets alone, then checked against every arc's ends (a read-only pass: the
+//! result still does not depend on the hint), and the DAG's tables are the opened MT's
+//! (`Mt::validate` derives levels again and compares). Appended vertices and tets need
+//! attribute rows; the editor pushes them (interpolated for vertices, inherited for tets,
+//! zeros for ghosts).
 //!
 //! This module knows nothing of cuts: the cut layer (`crate::cut::mt`) decides what to
 //! change.
@@ -501,12 +503,16 @@ fn arc_key(creator: &[FragmentId], destroyer: &[FragmentId], t: usize) -> u64 {
     (creator[t].0 as u64) << 32 | destroyer[t].0 as u64
 }
 
+/// Tets per block of [`Merge::plan`]'s order check (blocks are checked in parallel).
+const ORDER_BLOCK: u32 = 1 << 15;
+
 /// The reordering [`OpenMt::close`] makes when most of the pool is still in arc order
 /// (an edit changes a small part of it): the tets an edit may have moved (relabelled, or
 /// appended) are sorted alone, and the others, checked to be still in order, are merged
-/// with them in place. The result is the stable sort of the whole pool by arc, whatever
-/// the hint said; each element moves at most twice, and only the moved ones are copied
-/// aside (a fresh copy of a pool of millions of tets is mostly page faults).
+/// with them in place, each moved tet placed by a search among the others (no pass over
+/// the pool beyond the check). The result is the stable sort of the whole pool by arc,
+/// whatever the hint said; each element moves at most twice, and only the moved ones are
+/// copied aside (a fresh copy of a pool of millions of tets is mostly page faults).
 struct Merge {
     /// The moved tets by index, ascending.
     by_index: Vec<u32>,
@@ -537,35 +543,85 @@ impl Merge {
         if by_index.len() > nt / 4 {
             return None;
         }
-        let key = |t: u32| arc_key(creator, destroyer, t as usize);
-        let mut sorted = by_index.clone();
-        sorted.sort_by_key(|&t| (key(t), t));
-        // Merge the others (the runs between moved tets) with `sorted`, checking they are
-        // in order.
-        let mut pos: Vec<u32> = Vec::with_capacity(sorted.len());
-        let (mut j, mut out, mut prev) = (0usize, 0u32, 0u64);
+        let key = |t: u32| (arc_key(creator, destroyer, t as usize), t);
+        let mut keyed: Vec<(u64, u32)> = by_index.iter().map(|&t| key(t)).collect();
+        keyed.par_sort_unstable();
+        // The others, as runs between moved tets: each run in order and each run's last
+        // tet before the next run's first, checked in blocks on both cores (a pass over
+        // the pool's arcs, but no more).
+        let mut runs: Vec<(u32, u32)> = Vec::new();
         let mut start = 0u32;
         for end in by_index.iter().copied().chain(std::iter::once(nt as u32)) {
-            for t in start..end {
-                let k = key(t);
-                if k < prev {
-                    return None;
-                }
-                prev = k;
-                while j < sorted.len() && (key(sorted[j]), sorted[j]) < (k, t) {
-                    pos.push(out);
-                    out += 1;
-                    j += 1;
-                }
-                out += 1;
+            if start < end {
+                runs.push((start, end));
             }
             start = end + 1;
         }
-        while j < sorted.len() {
-            pos.push(out);
-            out += 1;
-            j += 1;
+        let in_order = runs
+            .par_iter()
+            .flat_map_iter(|&(a, b)| (a..b).step_by(ORDER_BLOCK as usize).map(move |s| (a, s, b)))
+            .all(|(a, s, b)| {
+                // A block's first tet follows the one before it in its run.
+                let (lo, hi) = (
+                    if s == a { s } else { s - 1 } as usize,
+                    (s + ORDER_BLOCK).min(b) as usize,
+                );
+                let arc = |(c, d): (&FragmentId, &FragmentId)| (c.0 as u64) << 32 | d.0 as u64;
+                let mut keys = creator[lo..hi].iter().zip(&destroyer[lo..hi]).map(arc);
+                let first = keys.next().unwrap_or(0);
+                keys.try_fold(first, |prev, k| (prev <= k).then_some(k))
+                    .is_some()
+            })
+            && runs.windows(2).all(|w| key(w[0].1 - 1) <= key(w[1].0));
+        if !in_order {
+            return None;
         }
+        // Each moved tet goes after the others before it in order: the first of them not
+        // before it is found by galloping from where the moved tet before it went, then
+        // bisecting (the next run's first tet stands for the moved ones a probe lands on).
+        let others_from = |x: (u64, u32), mut lo: u32| -> u32 {
+            let first_at = |i: u32| {
+                let r = runs.partition_point(|&(_, e)| e <= i);
+                runs.get(r).map_or(nt as u32, |&(s, _)| s.max(i))
+            };
+            let before = |i: u32| {
+                let u = first_at(i);
+                (u < nt as u32 && key(u) < x).then_some(u)
+            };
+            let mut step = 1u32;
+            let mut hi = loop {
+                let probe = lo.saturating_add(step).min(nt as u32);
+                match before(probe) {
+                    Some(u) if probe < nt as u32 => {
+                        lo = u + 1;
+                        step = step.saturating_mul(2);
+                    }
+                    _ => break probe,
+                }
+            };
+            while lo < hi {
+                let mid = lo + (hi - lo) / 2;
+                match before(mid) {
+                    Some(u) if u < hi => lo = u + 1,
+                    _ => hi = mid,
+                }
+            }
+            lo
+        };
+        let moved = by_index.as_slice();
+        let pos: Vec<u32> = keyed
+            .par_chunks(1 << 12)
+            .enumerate()
+            .flat_map_iter(|(c, chunk)| {
+                let (mut lo, mut moved_before) = (0u32, 0usize);
+                chunk.iter().enumerate().map(move |(j, &x)| {
+                    lo = others_from(x, lo);
+                    moved_before += moved[moved_before..].partition_point(|&m| m < lo);
+                    lo - moved_before as u32 + ((c << 12) + j) as u32
+                })
+            })
+            .collect();
+        let sorted: Vec<u32> = keyed.into_iter().map(|(_, t)| t).collect();
         Some(Merge {
             by_index,
             sorted,
@@ -687,56 +743,92 @@ mod tests {
         }
     }
 
-    /// The in-place reordering is the stable sort by arc, whatever the hint says.
+    /// One round of [`merge_is_the_stable_sort_whatever_the_hint`]: a pool of `n` tets in
+    /// arc order (`arcs` distinct creators; ties are common), up to `edits` of them
+    /// relabelled (said or not, and a lie now and then) and up to `edits` appended. Whether
+    /// the in-place path was taken.
+    fn merge_round(
+        rand: &mut impl FnMut(u64) -> u64,
+        round: usize,
+        n: usize,
+        arcs: u64,
+        edits: usize,
+    ) -> bool {
+        let mut keys: Vec<(u32, u32)> = (0..n)
+            .map(|_| (rand(arcs) as u32, rand(4) as u32))
+            .collect();
+        keys.sort();
+        let mut said: Vec<u32> = Vec::new();
+        for _ in 0..rand(1 + edits as u64) {
+            let t = rand(n as u64) as usize;
+            keys[t] = (rand(arcs + 2) as u32, rand(8) as u32);
+            if round % 5 != 0 {
+                said.push(t as u32);
+            }
+        }
+        for _ in 0..rand(1 + edits as u64 * 4 / 5) {
+            keys.push((rand(arcs + 2) as u32, rand(8) as u32));
+        }
+        if round % 7 == 0 && !keys.is_empty() {
+            // A lie: a tet said moved that did not.
+            said.push(rand(n as u64) as u32);
+        }
+        let creator: Vec<FragmentId> = keys.iter().map(|k| FragmentId(k.0)).collect();
+        let destroyer: Vec<FragmentId> = keys.iter().map(|k| FragmentId(k.1)).collect();
+        let mut expected: Vec<usize> = (0..keys.len()).collect();
+        expected.sort_by_key(|&t| keys[t]);
+        let Some(m) = Merge::plan(&creator, &destroyer, n, &said) else {
+            return false;
+        };
+        let mut ids: Vec<u32> = (0..keys.len() as u32).collect();
+        m.apply(&mut ids, 1);
+        assert_eq!(ids, expected.iter().map(|&t| t as u32).collect::<Vec<_>>());
+        // Several values per tet move together.
+        let mut wide: Vec<f64> = (0..keys.len())
+            .flat_map(|t| [t as f64, -(t as f64)])
+            .collect();
+        m.apply(&mut wide, 2);
+        let want: Vec<f64> = expected
+            .iter()
+            .flat_map(|&t| [t as f64, -(t as f64)])
+            .collect();
+        assert_eq!(wide, want);
+        true
+    }
+
+    /// The in-place reordering is the stable sort by arc, whatever the hint says: small
+    /// pools, and pools large enough that the order check and the placement of the moved
+    /// tets run in several blocks.
     #[test]
     fn merge_is_the_stable_sort_whatever_the_hint() {
         let mut rand = xorshift(0x9e37_79b9_7f4a_7c15);
-        let mut merged = 0;
-        for round in 0..300 {
-            let n = 1 + rand(400) as usize;
-            // A pool in arc order (few distinct arcs, so ties are common).
-            let mut keys: Vec<(u32, u32)> =
-                (0..n).map(|_| (rand(6) as u32, rand(4) as u32)).collect();
-            keys.sort();
-            // Edits: some relabelled (said or not), some appended.
-            let mut said: Vec<u32> = Vec::new();
-            for _ in 0..rand(1 + n as u64 / 8) {
-                let t = rand(n as u64) as usize;
-                keys[t] = (rand(8) as u32, rand(8) as u32);
-                if round % 5 != 0 {
-                    said.push(t as u32);
-                }
-            }
-            for _ in 0..rand(1 + n as u64 / 10) {
-                keys.push((rand(8) as u32, rand(8) as u32));
-            }
-            if round % 7 == 0 && !keys.is_empty() {
-                // A lie: a tet said moved that did not.
-                said.push(rand(n as u64) as u32);
-            }
-            let creator: Vec<FragmentId> = keys.iter().map(|k| FragmentId(k.0)).collect();
-            let destroyer: Vec<FragmentId> = keys.iter().map(|k| FragmentId(k.1)).collect();
-            let mut expected: Vec<usize> = (0..keys.len()).collect();
-            expected.sort_by_key(|&t| keys[t]);
-            let Some(m) = Merge::plan(&creator, &destroyer, n, &said) else {
-                continue;
-            };
-            merged += 1;
-            let mut ids: Vec<u32> = (0..keys.len() as u32).collect();
-            m.apply(&mut ids, 1);
-            assert_eq!(ids, expected.iter().map(|&t| t as u32).collect::<Vec<_>>());
-            // Several values per tet move together.
-            let mut wide: Vec<f64> = (0..keys.len())
-                .flat_map(|t| [t as f64, -(t as f64)])
-                .collect();
-            m.apply(&mut wide, 2);
-            let want: Vec<f64> = expected
-                .iter()
-                .flat_map(|&t| [t as f64, -(t as f64)])
-                .collect();
-            assert_eq!(wide, want);
-        }
+        let merged = (0..300)
+            .filter(|&round| {
+                let n = 1 + rand(400) as usize;
+                merge_round(&mut rand, round, n, 6, n / 8)
+            })
+            .count();
         assert!(merged > 100, "only {merged} rounds took the in-place path");
+        // From a tenth of the pool moved down to a few tets (runs longer than a block).
+        let merged = (0..12)
+            .filter(|&round| {
+                let n = 60_000 + rand(60_000) as usize;
+                merge_round(&mut rand, round, n, 2_000, (n / 10) >> round)
+            })
+            .count();
+        assert!(
+            merged > 4,
+            "only {merged} large rounds took the in-place path"
+        );
+        // A tet out of order, not said to move, where an order-check block begins (blocks
+        // start at the runs' starts: the run after tet 7 starts at 8).
+        let n = 3 * ORDER_BLOCK as usize;
+        let creator: Vec<FragmentId> = (0..n).map(|t| FragmentId(t as u32 / 64)).collect();
+        let destroyer = vec![FragmentId(u32::MAX); n];
+        let mut lied = creator.clone();
+        lied[8 + ORDER_BLOCK as usize] = FragmentId(0);
+        assert!(Merge::plan(&creator, &destroyer, n, &[7]).is_some());
+        assert!(Merge::plan(&lied, &destroyer, n, &[7]).is_none());
     }
 
     /// Arc ranges updated from the moved tets, once checked against the pool, are the arcs
