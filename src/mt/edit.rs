@@ -500,7 +500,13 @@ fn arcs_hold(
 /// A tet's arc, as one sortable number: creator, then destroyer.
 #[inline]
 fn arc_key(creator: &[FragmentId], destroyer: &[FragmentId], t: usize) -> u64 {
-    (creator[t].0 as u64) << 32 | destroyer[t].0 as u64
+    arc_of(creator[t], destroyer[t])
+}
+
+/// An arc, as one sortable number: creator, then destroyer.
+#[inline]
+fn arc_of(creator: FragmentId, destroyer: FragmentId) -> u64 {
+    (creator.0 as u64) << 32 | destroyer.0 as u64
 }
 
 /// Tets per block of [`Merge::plan`]'s order check (blocks are checked in parallel).
@@ -566,8 +572,8 @@ impl Merge {
                     if s == a { s } else { s - 1 } as usize,
                     (s + ORDER_BLOCK).min(b) as usize,
                 );
-                let arc = |(c, d): (&FragmentId, &FragmentId)| (c.0 as u64) << 32 | d.0 as u64;
-                let mut keys = creator[lo..hi].iter().zip(&destroyer[lo..hi]).map(arc);
+                let mut keys =
+                    (creator[lo..hi].iter().zip(&destroyer[lo..hi])).map(|(&c, &d)| arc_of(c, d));
                 let first = keys.next().unwrap_or(0);
                 keys.try_fold(first, |prev, k| (prev <= k).then_some(k))
                     .is_some()
@@ -592,7 +598,7 @@ impl Merge {
             let mut hi = loop {
                 let probe = lo.saturating_add(step).min(nt as u32);
                 match before(probe) {
-                    Some(u) if probe < nt as u32 => {
+                    Some(u) => {
                         lo = u + 1;
                         step = step.saturating_mul(2);
                     }
@@ -602,8 +608,9 @@ impl Merge {
             while lo < hi {
                 let mid = lo + (hi - lo) / 2;
                 match before(mid) {
-                    Some(u) if u < hi => lo = u + 1,
-                    _ => hi = mid,
+                    // The others from `hi` on are not before `x`: `u < hi`.
+                    Some(u) => lo = u + 1,
+                    None => hi = mid,
                 }
             }
             lo
