@@ -571,6 +571,14 @@ typedef struct mtcut_pending_report {
    */
   size_t folded;
   double seconds;
+  /**
+   * Cuts the model refused (it would have been left inconsistent: a cut beginning
+   * where an earlier crack ends, at an angle to it), dropped from the queue; the model
+   * is as it was without them, and the current mesh, which had them, was replaced by
+   * its extraction (`remeshed` is 1). Added after `seconds`: callers built against a
+   * header without it pass a smaller `struct_size` and are not written it.
+   */
+  size_t refused;
 } mtcut_pending_report;
 
 /**
@@ -1156,9 +1164,10 @@ mtcut_status mtcut_mt_build(const struct mtcut_mesh *mesh,
  * (`tets_after`/`vertices_after`: the model's tets and vertices over all levels).
  *
  * The result is checked exhaustively (`Mt::validate`, linear in the model's size) before
- * it replaces the model: a cut that would leave an invalid model (none is known; the
- * tests run sequences of 50 random cuts) gives `MTCUT_STATUS_INVALID_MESH` naming the
- * first violation, and the model is unchanged. Frontiers made earlier keep extracting
+ * it replaces the model: a cut the model refuses (one beginning where an earlier crack
+ * ends, at an angle to it, as a turning or tilting blade makes: a known limit) or that
+ * would leave an invalid model gives `MTCUT_STATUS_INVALID_MESH` naming the fragment or
+ * the first violation, and the model is unchanged. Frontiers made earlier keep extracting
  * from the model as it was when they were made. The two lips of a crack ending inside
  * the body are always extracted at the same resolution. After a cut straight through, a
  * focus extraction of the whole model may show the two bodies touching along the crack

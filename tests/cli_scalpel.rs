@@ -144,9 +144,9 @@ fn bad_path_files_are_refused_by_name() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// A path that turns breaks the coarser levels at its fourth step (a known limit of the
-/// MT cut, see `mtcut::cut::scalpel`): the run stops there, with the steps before it
-/// written and listed, and saves nothing.
+/// A path that turns would break the coarser levels at its fourth step (a known limit of
+/// the MT cut, see `mtcut::cut::scalpel`), which the MT cut refuses: the run stops there,
+/// with the steps before it written and listed, and saves nothing.
 #[test]
 fn a_step_that_breaks_the_model_stops_the_run() {
     let dir = scratch("cli_scalpel_turn");
@@ -178,7 +178,7 @@ fn a_step_that_breaks_the_model_stops_the_run() {
         ],
         &[
             "step 4",
-            "invalid model",
+            "refused, the MT is as it was",
             "steps 0-3 written",
             "nothing saved",
         ],

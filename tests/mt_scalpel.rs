@@ -13,7 +13,7 @@ mod mt_common;
 mod mtcut_common;
 
 use blades::{shallow_path, tilting, vertical};
-use mtcut::cut::{Blade, MtCutter};
+use mtcut::cut::{Blade, CutError, MtCutter};
 use mtcut::geom::{Aabb, CutPolygon, DVec3, Tolerance, scalpel_sweep};
 use mtcut_common::*;
 
@@ -115,6 +115,75 @@ fn a_tilting_blade_across_the_body_separates_it() {
         run.sweep("tilting", &path);
         assert!(run.components() >= 2, "{name}: the blade did not separate");
     }
+}
+
+/// A cut the MT cannot take yet (the turning blade of the test above, where it meets the
+/// end of the last step's crack at an angle) is refused with an error naming a fragment,
+/// and given back: the MT is byte for byte what it was, and the cutter goes on as if the
+/// cut had not been tried (a cut elsewhere then gives the same MT as on a twin cutter that
+/// never tried it), valid after.
+#[test]
+fn a_cut_breaking_the_mt_is_refused_and_given_back() {
+    let mut refused = 0;
+    for name in mt_common::MESHES {
+        let mut run = Run::new(name);
+        let mut twin = Run::new(name);
+        let b = run.bounds();
+        let (c, d) = (b.center(), b.max - b.min);
+        let r = 0.6 * d.x.max(d.y);
+        let centre = DVec3::new(b.min.x - 0.1 * d.x, c.y - r, c.z);
+        let at = |deg: f64| {
+            let a = (90.0 - deg).to_radians();
+            let p = centre + DVec3::new(r * a.cos(), r * a.sin(), 0.0);
+            vertical(&b, p.x, p.y)
+        };
+        let path: Vec<Blade> = (0..16).map(|k| at(-8.0 + 8.0 * k as f64)).collect();
+        let sweeps = path
+            .windows(2)
+            .flat_map(|w| scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).expect("sweep"));
+        for polygon in sweeps {
+            let before = run.cutter.mt().to_bytes();
+            match run.cutter.cut(&polygon) {
+                Ok(_) => {
+                    twin.cutter.cut(&polygon).expect("the twin cuts alike");
+                    run.polygons.push(polygon);
+                }
+                Err(e @ CutError::MtInconsistent { .. }) => {
+                    refused += 1;
+                    assert!(e.to_string().contains("fragment"), "{name}: {e}");
+                    assert!(
+                        run.cutter.mt().to_bytes() == before,
+                        "{name}: the refused cut changed the MT"
+                    );
+                    let (x0, x1) = (b.min.x - 0.05 * d.x, b.max.x + 0.05 * d.x);
+                    let y = c.y + 0.3 * d.y;
+                    for w in shallow_path(&b, (x0, y), (x1, y), 1).windows(2) {
+                        for p in
+                            scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).expect("sweep")
+                        {
+                            run.cutter.cut(&p).unwrap_or_else(|e| panic!("{name}: {e}"));
+                            twin.cutter
+                                .cut(&p)
+                                .unwrap_or_else(|e| panic!("{name}: {e}"));
+                            run.polygons.push(p);
+                        }
+                    }
+                    assert!(
+                        run.cutter.mt().to_bytes() == twin.cutter.mt().to_bytes(),
+                        "{name}: after a refused cut, the next cut differs from the twin's"
+                    );
+                    let req = requests(run.cutter.mt(), 10, 1, &mut Rng(7));
+                    if let Err(m) = check_after_cut(&run.cutter, run.volumes, &run.polygons, &req) {
+                        panic!("{name}, after a refused cut and one elsewhere: {m}");
+                    }
+                    break;
+                }
+                Err(e) => panic!("{name}: {e}"),
+            }
+        }
+    }
+    // When MT cuts learn to turn, this test needs another cut they refuse.
+    assert!(refused > 0, "no cut of the turning path was refused");
 }
 
 /// A shallow incision along x, then a second one starting outside the body and ending on

@@ -120,6 +120,10 @@ pub struct PendingReport {
     /// the polygon mapped by the affine map closest to the deformation around it (their
     /// frontier cut then does not map back: the current mesh is replaced).
     pub folded: usize,
+    /// Cuts the MT refused ([`CutError::MtInconsistent`]: it is as it was without them),
+    /// dropped from the queue; the current mesh, which had them, is then replaced by the
+    /// MT's extraction (`remeshed`).
+    pub refused: Vec<CutError>,
     pub seconds: f64,
 }
 
@@ -315,8 +319,8 @@ impl LiveMt {
             if spent {
                 break;
             }
-            let stats = match &front.frame {
-                Frame::Rest => self.cutter.cut(&front.polygon)?,
+            let made = match &front.frame {
+                Frame::Rest => self.cutter.cut(&front.polygon),
                 frame => {
                     let now;
                     let d = match frame {
@@ -337,13 +341,24 @@ impl LiveMt {
                         Err(CutError::DeformationFolds { .. }) => {
                             report.folded += 1;
                             self.remesh_due = true;
-                            self.cutter.cut(&rest_polygon(&front.polygon, d)?)?
+                            self.cutter.cut(&rest_polygon(&front.polygon, d)?)
                         }
-                        r => r?,
+                        r => r,
                     };
                     self.placement = Some((front.epoch, placed));
                     made
                 }
+            };
+            let stats = match made {
+                Err(e @ CutError::MtInconsistent { .. }) => {
+                    // The MT cannot take this cut and gave it back unchanged: the current
+                    // mesh, which has it, is extracted again from the MT (without it).
+                    self.pending.pop_front();
+                    self.remesh_due = true;
+                    report.refused.push(e);
+                    continue;
+                }
+                r => r?,
             };
             let changed = front.changed;
             self.pending.pop_front();

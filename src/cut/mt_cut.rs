@@ -147,7 +147,7 @@
 //!   on C's plane just outside it (also on a fresh mesh cut through its vertices).
 //! * A crack follows C up to a tet's size near C's contour (the tips, as on a plain
 //!   mesh): a later cut can cross an earlier polygon in that band.
-//! * **Two cracks meeting at an angle break the levels.** A step at an angle to the last
+//! * **Two cracks meeting at an angle are refused.** A step at an angle to the last
 //!   (a turning path; a tilting blade, whose sweeps are two triangles) begins on the line
 //!   where the last crack ended, and that crack's tips on the line lie on both planes: the
 //!   new cut snaps them. A snapped vertex gets one copy, taken by the tets of its negative
@@ -169,7 +169,11 @@
 //!   others, and no single copy per vertex suits both. A fix needs the levels to agree
 //!   on the earlier crack's front near the line (or copies per level, which the MT's
 //!   shared vertices exclude). The plain-mesh engine, one mesh with one copy per group,
-//!   cuts the same blades (tests/cut_scalpel.rs).
+//!   cuts the same blades (tests/cut_scalpel.rs). Such a cut is not left in the MT:
+//!   before closing, every fragment the cut changed has its floor and ceiling checked
+//!   for the same boundary, none holding a face twice (what `Mt::validate` checks, read
+//!   from the changed fragments only: `Changed::check`); a cut failing it is given back,
+//!   the MT byte for byte as before, and refused with [`CutError::MtInconsistent`].
 //! * **Crack tips off the plane are not taken** as the plain engine takes them when it
 //!   continues cracks ([`StateClassifier::with_crack_tips`]): tried, tips snapped onto a
 //!   cut up to 1.5 × the contour band off its plane broke the floor/ceiling conformity of
@@ -191,6 +195,7 @@ use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::{TET_EDGES, TET_FACES, flip_face, oriented_face};
 use crate::mesh::{FragmentId, Tet, TetId, VertexId};
 use crate::mt::{FragmentBvh, FragmentKind, GHOST, KnownDag, Mt, OpenMt, TetLinks};
+use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
 use std::time::Instant;
 
@@ -974,9 +979,12 @@ impl MtCutter {
                 .take_dag()
                 .expect("an MT opened by open_with keeps its DAG tables"),
         };
+        let lengths = (self.scales.len(), self.crack.len());
         let new_positions = origin_positions(&open.positions, &origins);
         open.positions.extend(new_positions);
         push_origin_rows(&mut open.point_data, &mut self.scales, &origins);
+        let crack_was: Vec<(VertexId, bool)> =
+            copies.iter().map(|&v| (v, self.crack[v.idx()])).collect();
         self.crack.resize(open.positions.len(), true);
         for &v in &copies {
             let p = open.positions[v.idx()];
@@ -991,17 +999,23 @@ impl MtCutter {
         // crack face of.
         let mut touched: Vec<u32> = Vec::new();
         let mut appended_parents: Vec<u32> = Vec::new();
+        let mut replaced: Vec<Replaced> = Vec::new();
+        let mut keep = |open: &OpenMt, t: usize, tet: Tet| {
+            replaced.push((t as u32, tet, open.creator[t], open.destroyer[t]));
+        };
         for (k, &parent) in cand.iter().enumerate() {
             match child_of[k] {
                 NONE => {
                     if classes[k].touches_cut() {
                         let side = unsplit_side(k);
+                        keep(&open, parent.idx(), tets[k]);
                         open.tets[parent.idx()] = for_side(tets[k], side);
                         touched.push(parent.0);
                     }
                 }
                 i => {
                     let ch = &children[i as usize];
+                    keep(&open, parent.idx(), tets[k]);
                     open.tets[parent.idx()] = for_side(ch.tets[0], ch.sides[0]);
                     touched.push(parent.0);
                     let (c, d) = (open.creator[parent.idx()], open.destroyer[parent.idx()]);
@@ -1027,6 +1041,7 @@ impl MtCutter {
             if let Some(subs) = sub_faces.get(&key) {
                 stats.ghosts_split += 1;
                 let (c, d) = (open.creator[g], open.destroyer[g]);
+                keep(&open, g, tet);
                 open.tets[g] = for_side(subs[0].0, subs[0].1);
                 ghost_touched.push(g as u32);
                 for &(t, side) in &subs[1..] {
@@ -1038,6 +1053,7 @@ impl MtCutter {
                 }
             } else if tet[..3].iter().any(|v| around.contains_key(v)) {
                 let side = face_side.get(&key).copied().unwrap_or(Side::Positive);
+                keep(&open, g, tet);
                 open.tets[g] = for_side(tet, side);
                 ghost_touched.push(g as u32);
             }
@@ -1238,8 +1254,11 @@ impl MtCutter {
                 }
             }
         }
+        let cracked_was = self.cracked.clone();
         self.cracked.resize(nf, false);
         let mut split: Vec<FragmentId> = Vec::new();
+        // The fragment each added fragment was split off.
+        let mut born: Vec<FragmentId> = Vec::new();
         for (i, &f) in order.iter().enumerate() {
             let n_parts = first_part[i + 1] - first_part[i];
             self.cracked[f.idx()] = n_parts > 1;
@@ -1282,6 +1301,7 @@ impl MtCutter {
                 debug_assert_eq!(self.split_off.len(), n);
                 self.split_off.push(self.split_off[f.idx()]);
                 self.split_off[f.idx()] = n as u32;
+                born.push(f);
             }
             stats.fragments_added += (n_groups - 1) as usize;
             let id = |p: u32| match group[p as usize] {
@@ -1303,6 +1323,35 @@ impl MtCutter {
                     open.relabelled.push(t);
                 }
             }
+        }
+        // The MT condition (paper §2: a fragment's floor and ceiling bound the same region)
+        // where the cut changed it. A cut breaking it is given back and refused, never left
+        // in the MT: cuts the engine does not handle yet (see the module docs' limits) get
+        // an error instead of an invalid MT.
+        let changed = Changed {
+            n_tets,
+            nf,
+            replaced: &replaced,
+            born: &born,
+        };
+        if let Err((fragment, detail)) = changed.check(&open, &order, &floor, &ceiling) {
+            drop(floor);
+            drop(ceiling);
+            self.give_back(
+                open,
+                GivenBack {
+                    nv,
+                    lengths,
+                    replaced,
+                    born,
+                    crack_was,
+                    cracked: cracked_was,
+                },
+                n_tets,
+                nf,
+                dag.dag,
+            );
+            return Err(CutError::MtInconsistent { fragment, detail });
         }
         // A tet the tables replaced is tiled by its children (a ghost's triangle by its
         // sub-triangles; crack ghosts lie inside): only a fragment that gave tets to the
@@ -1330,6 +1379,284 @@ impl MtCutter {
         stats.time.dag = t_dag.elapsed().as_secs_f64();
         stats.time.total = start.elapsed().as_secs_f64();
         Ok(stats)
+    }
+}
+
+/// A pool tet a cut wrote in place: its index, and its tet, creator and destroyer before.
+type Replaced = (u32, Tet, FragmentId, FragmentId);
+
+/// What a cut changed in the opened MT, for checking the MT condition there
+/// ([`Changed::check`]).
+struct Changed<'a> {
+    /// Pool tets and fragments before the cut: those after were appended.
+    n_tets: usize,
+    nf: usize,
+    replaced: &'a [Replaced],
+    /// The fragment each appended fragment was split off.
+    born: &'a [FragmentId],
+}
+
+impl Changed<'_> {
+    /// The fragment each fragment comes from: itself, or the one it was split off.
+    fn origin(&self, g: FragmentId) -> FragmentId {
+        match g.idx().checked_sub(self.nf) {
+            Some(k) => self.born[k],
+            None => g,
+        }
+    }
+
+    /// The first fragment (and what is wrong with it) whose floor and ceiling, after the
+    /// cut, do not have the same boundary or hold a face twice (what `Mt::validate`
+    /// checks of every fragment), read from what the cut changed. Each involved collapse
+    /// fragment, and each one split off it, is checked whole (`floor` and `ceiling` list
+    /// them, as step 3 read them). A root's ceiling and a drain's floor are whole meshes,
+    /// closed by their ghosts, and were closed before the cut: they stay closed when the
+    /// tets the cut made of them (in place and appended) have the boundary of the tets it
+    /// replaced, none twice.
+    fn check(
+        &self,
+        open: &OpenMt,
+        order: &[FragmentId],
+        floor: &[Vec<u32>],
+        ceiling: &[Vec<u32>],
+    ) -> Result<(), (usize, String)> {
+        let whole = |f: FragmentId, above: bool| match open.kind[f.idx()] {
+            FragmentKind::Root => above,
+            FragmentKind::Drain => !above,
+            FragmentKind::Collapse => false,
+        };
+        // Per root or drain: the tets it had where the cut wrote, and those it has now.
+        let mut sides: HashMap<u32, (Vec<Tet>, Vec<Tet>), FxBuild> = HashMap::default();
+        for &(_, old, c, d) in self.replaced {
+            for (f, above) in [(c, true), (d, false)] {
+                if whole(f, above) {
+                    sides.entry(f.0).or_default().0.push(old);
+                }
+            }
+        }
+        let now = self.replaced.iter().map(|r| r.0 as usize);
+        for t in now.chain(self.n_tets..open.tets.len()) {
+            let (c, d) = (open.creator[t], open.destroyer[t]);
+            for (f, above) in [(self.origin(c), true), (self.origin(d), false)] {
+                if whole(f, above) {
+                    sides.entry(f.0).or_default().1.push(open.tets[t]);
+                }
+            }
+        }
+        let mut sides: Vec<_> = sides.into_iter().collect();
+        sides.sort_unstable_by_key(|s| s.0);
+        let mut counts = FaceCounts::default();
+        for (f, (old, new)) in sides {
+            let c = Boundaries::compare(old.into_iter(), new.into_iter(), &mut counts);
+            if !c.same || c.doubled[1] > c.doubled[0] {
+                let what = match open.kind[f as usize] {
+                    FragmentKind::Root => "ceiling (a finest mesh)",
+                    _ => "floor (a coarsest mesh)",
+                };
+                return Err((
+                    f as usize,
+                    format!(
+                        "the tets the cut made of its {what} have {} boundary faces and {} \
+                         faces doubled, the tets they replace {} and {}",
+                        c.boundary[1], c.doubled[1], c.boundary[0], c.doubled[0]
+                    ),
+                ));
+            }
+        }
+        // Collapse fragments, each with the fragments split off it, on both cores.
+        let check_one = |counts: &mut FaceCounts, i: usize| -> Option<(usize, String)> {
+            let f = order[i];
+            if open.kind[f.idx()] != FragmentKind::Collapse {
+                return None;
+            }
+            // The fragment and those split off it (usually none).
+            let mut ids: Vec<FragmentId> = floor[i]
+                .iter()
+                .map(|&t| open.destroyer[t as usize])
+                .chain(ceiling[i].iter().map(|&t| open.creator[t as usize]))
+                .filter(|&g| g != f)
+                .collect();
+            ids.sort_unstable();
+            ids.dedup();
+            counts.reserve(4 * (floor[i].len() + ceiling[i].len()));
+            for g in std::iter::once(f).chain(ids) {
+                let c = Boundaries::compare(
+                    linked(&floor[i], &open.destroyer, g, &open.tets),
+                    linked(&ceiling[i], &open.creator, g, &open.tets),
+                    counts,
+                );
+                if !c.same || c.doubled != [0, 0] {
+                    let detail = format!(
+                        "floor boundary {} triangles, ceiling {}; {} floor and {} ceiling \
+                         faces doubled",
+                        c.boundary[0], c.boundary[1], c.doubled[0], c.doubled[1]
+                    );
+                    return Some((g.idx(), detail));
+                }
+            }
+            None
+        };
+        // One table of face counts per thread, kept from fragment to fragment.
+        let first_bad = if order.len() > 64 {
+            let each = (0..order.len())
+                .into_par_iter()
+                .map_init(FaceCounts::default, check_one);
+            each.find_first(Option::is_some).flatten()
+        } else {
+            let mut counts = FaceCounts::default();
+            (0..order.len()).find_map(|i| check_one(&mut counts, i))
+        };
+        first_bad.map_or(Ok(()), Err)
+    }
+}
+
+/// The tets of `list` whose link (creator or destroyer) is `g`.
+fn linked<'a>(
+    list: &'a [u32],
+    link: &'a [FragmentId],
+    g: FragmentId,
+    tets: &'a [Tet],
+) -> impl Iterator<Item = Tet> + 'a {
+    let list = list.iter().filter(move |&&t| link[t as usize] == g);
+    list.map(|&t| tets[t as usize])
+}
+
+/// Per triangle (its vertices sorted), how often each of two sets of tets holds it with
+/// each orientation.
+type FaceCounts = HashMap<[u32; 3], [[u16; 2]; 2], FxBuild>;
+
+/// Two sets of tets compared face by face (a fragment's floor and ceiling; what a cut made
+/// of a closed mesh and what it replaced), as `Mt::validate` compares a fragment's floor
+/// and ceiling: each set's boundary is the oriented faces whose opposite it does not hold.
+struct Boundaries {
+    /// Whether the two boundaries are the same oriented triangles.
+    same: bool,
+    /// Per set: its boundary faces, and its faces held twice with one orientation.
+    boundary: [usize; 2],
+    doubled: [usize; 2],
+}
+
+impl Boundaries {
+    /// The faces of both sets counted by their sorted vertices, per set and orientation
+    /// (even or odd order of the sorted vertices), in `counts` (a hash table: sorting them
+    /// cost twice as much), then one pass over the triangles met.
+    fn compare(
+        a: impl Iterator<Item = Tet>,
+        b: impl Iterator<Item = Tet>,
+        counts: &mut FaceCounts,
+    ) -> Boundaries {
+        fn count(counts: &mut FaceCounts, set: usize, tets: impl Iterator<Item = Tet>) {
+            for t in tets {
+                for f in TET_FACES {
+                    let [x, y, z] = f.map(|j| t[j].0);
+                    // Sorted, counting the swaps: an odd count is the opposite orientation.
+                    let (x, y, s0) = if x > y { (y, x, 1) } else { (x, y, 0) };
+                    let (y, z, s1) = if y > z { (z, y, 1) } else { (y, z, 0) };
+                    let (x, y, s2) = if x > y { (y, x, 1) } else { (x, y, 0) };
+                    let n = &mut counts.entry([x, y, z]).or_default()[set][(s0 + s1 + s2) & 1];
+                    *n = n.saturating_add(1);
+                }
+            }
+        }
+        counts.clear();
+        count(counts, 0, a);
+        count(counts, 1, b);
+        let mut r = Boundaries {
+            same: true,
+            boundary: [0; 2],
+            doubled: [0; 2],
+        };
+        for n in counts.values() {
+            let mut open_side = [None; 2];
+            for set in 0..2 {
+                let [even, odd] = n[set].map(usize::from);
+                r.doubled[set] += even.saturating_sub(1) + odd.saturating_sub(1);
+                open_side[set] = match (even, odd) {
+                    (0, 0) => None,
+                    (_, 0) => Some(0),
+                    (0, _) => Some(1),
+                    _ => None,
+                };
+                r.boundary[set] += match open_side[set] {
+                    Some(0) => even,
+                    Some(_) => odd,
+                    None => 0,
+                };
+            }
+            r.same &= open_side[0] == open_side[1];
+        }
+        r
+    }
+}
+
+/// What [`MtCutter::give_back`] needs, besides the open MT, to undo a cut.
+struct GivenBack {
+    /// Vertices before the cut, and the lengths of the cutter's vertex scales and crack
+    /// flags then.
+    nv: usize,
+    lengths: (usize, usize),
+    replaced: Vec<Replaced>,
+    born: Vec<FragmentId>,
+    /// The crack flags the cut set on vertices it duplicated, as they were.
+    crack_was: Vec<(VertexId, bool)>,
+    /// The cracked fragments, as they were.
+    cracked: Vec<bool>,
+}
+
+impl MtCutter {
+    /// Undoes a cut refused after it opened the MT and wrote in it: what it appended is
+    /// dropped, what it wrote in place written back, fragments split off given back to
+    /// their origins, and the MT closed as it was (nothing moved: the arcs, boxes and DAG
+    /// kept), with the cutter's own tables as they were.
+    fn give_back(
+        &mut self,
+        mut open: OpenMt,
+        undo: GivenBack,
+        n_tets: usize,
+        nf: usize,
+        dag: KnownDag,
+    ) {
+        for &(t, tet, c, d) in &undo.replaced {
+            let t = t as usize;
+            open.tets[t] = tet;
+            open.creator[t] = c;
+            open.destroyer[t] = d;
+        }
+        let origin = |g: FragmentId| match g.idx().checked_sub(nf) {
+            Some(k) => undo.born[k],
+            None => g,
+        };
+        for &t in open.relabelled.iter().filter(|&&t| (t as usize) < n_tets) {
+            let t = t as usize;
+            open.creator[t] = origin(open.creator[t]);
+            open.destroyer[t] = origin(open.destroyer[t]);
+        }
+        open.relabelled.clear();
+        open.tets.truncate(n_tets);
+        open.creator.truncate(n_tets);
+        open.destroyer.truncate(n_tets);
+        open.cell_data.truncate(n_tets);
+        open.positions.truncate(undo.nv);
+        open.point_data.truncate(undo.nv);
+        open.kind.truncate(nf);
+        open.error.truncate(nf);
+        open.changed_fragments = Some(Vec::new());
+        open.restore_dag(dag);
+        for (k, &f) in undo.born.iter().enumerate().rev() {
+            self.split_off[f.idx()] = self.split_off[nf + k];
+        }
+        self.split_off.truncate(nf);
+        self.cracked = undo.cracked;
+        self.scales.truncate(undo.lengths.0);
+        for &(v, was) in &undo.crack_was {
+            self.crack[v.idx()] = was;
+        }
+        self.crack.truncate(undo.lengths.1);
+        let (mt, links) = open
+            .close_keeping_links()
+            .unwrap_or_else(|e| panic!("an MT cut given back left an inconsistent store: {e}"));
+        self.links = Some(links);
+        self.mt = Some(mt);
     }
 }
 

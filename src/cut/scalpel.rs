@@ -19,10 +19,10 @@
 //! * So do an incision ending inside the body and extended later, and a second incision
 //!   ending on the first (T) or crossing it (X), in any plane (tests/mt_scalpel.rs).
 //! * A step at an angle to the last (a turning path, a tilting blade) meets the last
-//!   step's crack at an angle and breaks the coarser levels (see [`super::mt_cut`]'s
-//!   limits: one copy per snapped vertex cannot follow two cracks meeting at an angle).
-//!   Callers should check [`Mt::validate`] after each step (the CLI does, and stops
-//!   there).
+//!   step's crack at an angle, which would break the coarser levels (see
+//!   [`super::mt_cut`]'s limits: one copy per snapped vertex cannot follow two cracks
+//!   meeting at an angle). The MT cut checks each fragment it changed and refuses such a
+//!   step ([`CutError::MtInconsistent`]), the MT left as it was; the CLI stops there.
 
 use super::mt_cut::{MtCutStats, MtCutter};
 use super::options::{CutError, CutOptions, MIN_FACE_POINT_MARGIN};

@@ -212,7 +212,9 @@ impl mtcut_cut_stats {
 
 pub(crate) fn cut_failure(e: CutError) -> Failure {
     match e {
-        CutError::InvertedTet { .. } => Failure::new(MTCUT_STATUS_INVALID_MESH, e.to_string()),
+        CutError::InvertedTet { .. } | CutError::MtInconsistent { .. } => {
+            Failure::new(MTCUT_STATUS_INVALID_MESH, e.to_string())
+        }
         e => Failure::invalid(e.to_string()),
     }
 }

@@ -306,6 +306,12 @@ pub struct mtcut_pending_report {
     /// Cuts made at rest because the deformation folded a tet of the model they meet.
     pub folded: usize,
     pub seconds: f64,
+    /// Cuts the model refused (it would have been left inconsistent: a cut beginning
+    /// where an earlier crack ends, at an angle to it), dropped from the queue; the model
+    /// is as it was without them, and the current mesh, which had them, was replaced by
+    /// its extraction (`remeshed` is 1). Added after `seconds`: callers built against a
+    /// header without it pass a smaller `struct_size` and are not written it.
+    pub refused: usize,
 }
 
 // SAFETY: repr(C), `struct_size: usize` first; FIRST_SIZE is within the struct.
@@ -359,6 +365,7 @@ pub unsafe extern "C" fn mtcut_live_process_pending(
                 remeshed: i32::from(r.remeshed),
                 folded: r.folded,
                 seconds: r.seconds,
+                refused: r.refused.len(),
             });
         }
         Ok(())

@@ -250,9 +250,10 @@ impl mtcut_cut_stats {
 /// (`tets_after`/`vertices_after`: the model's tets and vertices over all levels).
 ///
 /// The result is checked exhaustively (`Mt::validate`, linear in the model's size) before
-/// it replaces the model: a cut that would leave an invalid model (none is known; the
-/// tests run sequences of 50 random cuts) gives `MTCUT_STATUS_INVALID_MESH` naming the
-/// first violation, and the model is unchanged. Frontiers made earlier keep extracting
+/// it replaces the model: a cut the model refuses (one beginning where an earlier crack
+/// ends, at an angle to it, as a turning or tilting blade makes: a known limit) or that
+/// would leave an invalid model gives `MTCUT_STATUS_INVALID_MESH` naming the fragment or
+/// the first violation, and the model is unchanged. Frontiers made earlier keep extracting
 /// from the model as it was when they were made. The two lips of a crack ending inside
 /// the body are always extracted at the same resolution. After a cut straight through, a
 /// focus extraction of the whole model may show the two bodies touching along the crack

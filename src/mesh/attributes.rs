@@ -96,6 +96,13 @@ impl Attributes {
         }
     }
 
+    /// Keeps the first `n` elements of every column (an edit given back).
+    pub(crate) fn truncate(&mut self, n: usize) {
+        for c in &mut self.columns {
+            c.values.truncate(n * c.components);
+        }
+    }
+
     /// Appends to every column a copy of the values of element `src`.
     pub fn push_copy(&mut self, src: usize) {
         for c in &mut self.columns {

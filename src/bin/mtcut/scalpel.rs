@@ -12,9 +12,10 @@
 //! ([`mtcut::cut::LiveMt`], paper §5): the current mesh is cut first (and written), then
 //! the rest of the model; the statistics give both times.
 //!
-//! A step that leaves an invalid model (see [`mtcut::cut::scalpel`]'s limits: a path
-//! that turns breaks the coarser levels) stops the run with an error naming the step;
-//! the steps before it stay written and listed, and `--save` writes nothing.
+//! A step the model refuses (see [`mtcut::cut::scalpel`]'s limits: a path that turns or
+//! tilts, whose sweeps meet at an angle, is refused by the MT cut where it would break the
+//! coarser levels) or that leaves an invalid model stops the run with an error naming the
+//! step; the steps before it stay written and listed, and `--save` writes nothing.
 //!
 //! Given a mesh instead of a model (any readable mesh file), the scalpel cuts the mesh
 //! itself, each step continuing the crack of the earlier ones
@@ -150,9 +151,13 @@ pub fn run(args: Args) -> CliResult {
     write_step(0, scalpel.mt(), &mut series)?;
     let start = Instant::now();
     for (k, &to) in blades.iter().enumerate().skip(1) {
-        let step = scalpel
-            .step(to)
-            .map_err(|e| format!("step {k}: {e}; steps 0-{} written", k - 1))?;
+        let step = scalpel.step(to).map_err(|e| {
+            format!(
+                "step {k}: {e}; steps 0-{} written to {}, nothing saved",
+                k - 1,
+                args.output.display()
+            )
+        })?;
         let t_validate = Instant::now();
         let report = scalpel.mt().validate();
         let validate_seconds = t_validate.elapsed().as_secs_f64();
@@ -235,8 +240,13 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
     let start = Instant::now();
     let mut steps: Vec<Value> = Vec::new();
     for (k, w) in blades.windows(2).enumerate().map(|(k, w)| (k + 1, w)) {
-        let failed =
-            |e: &dyn std::fmt::Display| format!("step {k}: {e}; steps 0-{} written", k - 1);
+        let failed = |e: &dyn std::fmt::Display| {
+            format!(
+                "step {k}: {e}; steps 0-{} written to {}, nothing saved",
+                k - 1,
+                args.output.display()
+            )
+        };
         let sweep =
             scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).map_err(|e| failed(&e))?;
         let (mut frontier_s, mut tets_cut) = (0.0, 0);
@@ -249,6 +259,10 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         let r = live
             .process_pending(PendingBudget::All)
             .map_err(|e| failed(&e))?;
+        // The model refused a cut (and is as it was): stop as a step that broke it would.
+        if let Some(e) = r.refused.first() {
+            return Err(failed(e).into());
+        }
         let t_validate = Instant::now();
         let (model, mesh) = (live.mt().validate(), live.mesh().validate());
         let validate_seconds = t_validate.elapsed().as_secs_f64();
