@@ -29,8 +29,7 @@ impl Run {
     fn new(name: &'static str) -> Run {
         let mt = mt_common::built(name).1.clone();
         let volumes = extreme_volumes(&mt);
-        let options =
-            MtCutter::DEFAULT_OPTIONS.with_face_point_margin(mtcut::cut::MIN_FACE_POINT_MARGIN);
+        let options = MtCutter::DEFAULT_OPTIONS;
         Run {
             name,
             cutter: MtCutter::new(mt, options).expect("options"),

@@ -253,14 +253,49 @@ fn options_the_mt_cannot_honour_are_refused() {
     }
 }
 
+/// With the default options: a square cut, a square next to it in its plane (continuing
+/// its crack), then a cut straight through in the same plane. With the engine's face-point
+/// margin of 0.5 the second left fragments with a face twice on the three shared meshes.
+#[test]
+fn a_cut_continuing_an_earlier_one_in_its_plane_stays_valid() {
+    use mtcut::geom::DVec3;
+    for name in mt_common::MESHES {
+        let mt = &mt_common::built(name).1;
+        let volumes = extreme_volumes(mt);
+        let b = mtcut::geom::Aabb::from_points(mt.positions());
+        let (c, d) = (b.center(), b.max - b.min);
+        let z = |x: f64, y: f64| c.z + 0.07 * (x - c.x) + 0.04 * (y - c.y);
+        let square = |cx: f64, h: f64| {
+            let p = |x: f64, y: f64| DVec3::new(x, y, z(x, y));
+            let corners = [(-h, -h), (h, -h), (h, h), (-h, h)];
+            CutPolygon::new(&corners.map(|(dx, dy)| p(cx + dx, c.y + dy))).expect("square")
+        };
+        let h = 0.15 * d.length();
+        let mut c_ = cutter(name);
+        let mut polygons = Vec::new();
+        let mut rng = Rng(5);
+        for (k, p) in [
+            square(c.x, h),
+            square(c.x + 2.0 * h, h),
+            square(c.x, 3.0 * d.length()),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let case = format!("{name}, cut {k}");
+            cut_and_check(&mut c_, volumes, &mut polygons, p, Some(1), &mut rng, &case);
+        }
+        assert!(c_.mt().nb_components() >= 2, "{name}: not cut through");
+    }
+}
+
 /// A blade swept across the MT in 12 steps, each cutting the quadrilateral it swept (the
 /// plain-mesh engine passes the same test: tests/cut_engine.rs). The progressive scalpel
 /// of issue 7 needs it.
 #[test]
 fn a_blade_swept_across_the_mt_stays_valid() {
     use mtcut::geom::{DVec3, Tolerance, scalpel_sweep};
-    let options =
-        MtCutter::DEFAULT_OPTIONS.with_face_point_margin(mtcut::cut::MIN_FACE_POINT_MARGIN);
+    let options = MtCutter::DEFAULT_OPTIONS;
     for name in mt_common::MESHES {
         let mt = mt_common::built(name).1.clone();
         let volumes = extreme_volumes(&mt);

@@ -354,11 +354,18 @@ fn union(parent: &mut [u32], a: u32, b: u32) {
 
 impl MtCutter {
     /// The options of an MT cut: the engine's defaults with `snap` 1e-6 (vertices are on
-    /// the cut only when on its plane up to rounding, inside C) and cracks continued (an MT
+    /// the cut only when on its plane up to rounding, inside C), cracks continued (an MT
     /// cut always continues the cracks of earlier cuts, whatever
-    /// [`CutOptions::continue_cracks`] says).
+    /// [`CutOptions::continue_cracks`] says) and face points at the smallest margin
+    /// ([`MIN_FACE_POINT_MARGIN`](super::MIN_FACE_POINT_MARGIN): a crack's tips follow its
+    /// polygon's contour). With the engine's margin of 0.5 (tips in the middle of their
+    /// segments, up to half a face inside C), a cut continuing an earlier one in its plane
+    /// (a square next to the last) met tips beyond the contour band and left fragments
+    /// with a face twice on all three shared meshes (tests/mtcut_cut.rs). The same options
+    /// as [`CutOptions::SCALPEL`]'s for a plain mesh.
     pub const DEFAULT_OPTIONS: CutOptions = CutOptions {
         snap: crate::geom::Tolerance { relative: 1e-6 },
+        face_point_margin: super::MIN_FACE_POINT_MARGIN,
         continue_cracks: true,
         ..CutOptions::DEFAULT
     };

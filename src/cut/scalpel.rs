@@ -5,11 +5,11 @@
 //! body. The time-critical form, where each step cuts the simulation's current mesh first
 //! and the MT later, is [`super::LiveMt`] given the same sweeps.
 //!
-//! The MT cut runs with the smallest face-point margin
-//! ([`super::MIN_FACE_POINT_MARGIN`]): each step continues the
-//! last one's crack, whose tips then lie within the contour band of the new polygon (see
-//! [`super::mt_cut`]; with the default margin, tips in the middle of their faces lie
-//! beyond it and the levels disagree).
+//! The MT cut runs with [`MtCutter::DEFAULT_OPTIONS`], whose face-point margin is the
+//! smallest ([`super::MIN_FACE_POINT_MARGIN`]): each step continues the last one's crack,
+//! whose tips then lie within the contour band of the new polygon (see
+//! [`super::mt_cut`]; with the engine's default margin, tips in the middle of their faces
+//! lie beyond it and the levels disagree).
 //!
 //! # Limits (measured; tests/mtcut_cut.rs and tests/mt_scalpel.rs)
 //!
@@ -25,7 +25,7 @@
 //!   step ([`CutError::MtInconsistent`]), the MT left as it was; the CLI stops there.
 
 use super::mt_cut::{MtCutStats, MtCutter};
-use super::options::{CutError, CutOptions, MIN_FACE_POINT_MARGIN};
+use super::options::{CutError, CutOptions};
 use crate::geom::{DVec3, PolygonError, Tolerance, scalpel_sweep};
 use crate::mt::Mt;
 
@@ -69,13 +69,9 @@ pub struct Scalpel {
 const SWEEP_PLANARITY: Tolerance = Tolerance { relative: 1e-9 };
 
 impl Scalpel {
-    /// The MT cut options of a scalpel: [`MtCutter::DEFAULT_OPTIONS`] with the smallest
-    /// face-point margin (see the module docs); the same as [`CutOptions::SCALPEL`] for a
-    /// plain mesh.
-    pub const OPTIONS: CutOptions = CutOptions {
-        face_point_margin: MIN_FACE_POINT_MARGIN,
-        ..MtCutter::DEFAULT_OPTIONS
-    };
+    /// The MT cut options of a scalpel: [`MtCutter::DEFAULT_OPTIONS`] (see the module
+    /// docs); the same as [`CutOptions::SCALPEL`] for a plain mesh.
+    pub const OPTIONS: CutOptions = MtCutter::DEFAULT_OPTIONS;
 
     /// A scalpel on `mt` (which should be valid), its blade at `blade`.
     pub fn new(mt: Mt, blade: Blade) -> Result<Scalpel, ScalpelError> {
