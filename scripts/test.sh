@@ -11,7 +11,7 @@ step() { printf '\n==> %s\n' "$*"; }
 # C/C++ examples, CMake for those examples, ParaView (pvbatch) under Xvfb for what a user
 # opens; valgrind and binutils (readelf, nm) for the C API checks. `--no-install-recommends`
 # matters: paraview's recommends would remove libvtk9-dev.
-APT_PACKAGES=(cmake pkg-config g++ binutils valgrind libvtk9-dev libtet1.5-dev tetgen python3-vtk9 paraview xvfb xauth)
+APT_PACKAGES=(cmake pkg-config g++ binutils valgrind libvtk9-dev libtet1.5-dev tetgen python3-vtk9 python3-numpy paraview xvfb xauth)
 missing=()
 for p in "${APT_PACKAGES[@]}"; do
   status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
