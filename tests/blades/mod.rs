@@ -14,6 +14,17 @@ pub fn vertical(b: &Aabb, x: f64, y: f64) -> Blade {
     ]
 }
 
+/// A vertical blade on an arc around a centre off the body (entering it from -x), `deg`
+/// degrees along it: an incision turning by 8° per step takes `deg` = -8, 0, 8, ...
+pub fn on_arc(b: &Aabb, deg: f64) -> Blade {
+    let (c, d) = (b.center(), b.max - b.min);
+    let r = 0.6 * d.x.max(d.y);
+    let centre = DVec3::new(b.min.x - 0.1 * d.x, c.y - r, c.z);
+    let a = (90.0 - deg).to_radians();
+    let p = centre + DVec3::new(r * a.cos(), r * a.sin(), 0.0);
+    vertical(b, p.x, p.y)
+}
+
 /// A blade cutting from above the body down to mid-depth, moved along `from`→`to` in steps.
 pub fn shallow_path(b: &Aabb, from: (f64, f64), to: (f64, f64), steps: usize) -> Vec<Blade> {
     let d = b.max - b.min;
