@@ -1470,21 +1470,36 @@ impl Changed<'_> {
                 ));
             }
         }
-        // Collapse fragments, each with the fragments split off it, on both cores.
+        // Collapse fragments, each with the fragments split off it, on both cores. Those
+        // the cut neither wrote a tet of nor split (involved as cracked by earlier cuts, as
+        // most are on a scalpel's later steps) keep the tets, and the boundary, they had.
+        let mut wrote: Vec<u32> = self.replaced.iter().flat_map(|r| [r.2.0, r.3.0]).collect();
+        for t in self.n_tets..open.tets.len() {
+            let (c, d) = (open.creator[t], open.destroyer[t]);
+            wrote.extend([self.origin(c).0, self.origin(d).0]);
+        }
+        wrote.sort_unstable();
+        wrote.dedup();
+        let mut split: Vec<FragmentId> = self.born.to_vec();
+        split.sort_unstable();
+        split.dedup();
         let check_one = |counts: &mut FaceCounts, i: usize| -> Option<(usize, String)> {
             let f = order[i];
-            if open.kind[f.idx()] != FragmentKind::Collapse {
+            let was_split = split.binary_search(&f).is_ok();
+            if open.kind[f.idx()] != FragmentKind::Collapse
+                || !(was_split || wrote.binary_search(&f.0).is_ok())
+            {
                 return None;
             }
-            // The fragment and those split off it (usually none).
-            let mut ids: Vec<FragmentId> = floor[i]
-                .iter()
-                .map(|&t| open.destroyer[t as usize])
-                .chain(ceiling[i].iter().map(|&t| open.creator[t as usize]))
-                .filter(|&g| g != f)
-                .collect();
-            ids.sort_unstable();
-            ids.dedup();
+            // The fragment and those split off it.
+            let mut ids: Vec<FragmentId> = Vec::new();
+            if was_split {
+                let links = floor[i].iter().map(|&t| open.destroyer[t as usize]);
+                ids.extend(links.chain(ceiling[i].iter().map(|&t| open.creator[t as usize])));
+                ids.retain(|&g| g != f);
+                ids.sort_unstable();
+                ids.dedup();
+            }
             counts.reserve(4 * (floor[i].len() + ceiling[i].len()));
             for g in std::iter::once(f).chain(ids) {
                 let c = Boundaries::compare(
