@@ -171,9 +171,10 @@
 //!   shared vertices exclude). The plain-mesh engine, one mesh with one copy per group,
 //!   cuts the same blades (tests/cut_scalpel.rs). Such a cut is not left in the MT:
 //!   before closing, every fragment the cut changed has its floor and ceiling checked
-//!   for the same boundary, none holding a face twice (what `Mt::validate` checks, read
-//!   from the changed fragments only: `Changed::check`); a cut failing it is given back,
-//!   the MT byte for byte as before, and refused with [`CutError::MtInconsistent`].
+//!   for the same boundary, none holding a face twice, and every tet the cut made for a
+//!   positive orientation (what `Mt::validate` checks, read from what the cut changed
+//!   only: `Changed::check`); a cut failing it is given back, the MT byte for byte as
+//!   before, and refused with [`CutError::MtInconsistent`].
 //! * **Crack tips off the plane are not taken** as the plain engine takes them when it
 //!   continues cracks ([`StateClassifier::with_crack_tips`]): tried, tips snapped onto a
 //!   cut up to 1.5 × the contour band off its plane broke the floor/ceiling conformity of
@@ -1412,9 +1413,10 @@ impl Changed<'_> {
         }
     }
 
-    /// The first fragment (and what is wrong with it) whose floor and ceiling, after the
-    /// cut, do not have the same boundary or hold a face twice (what `Mt::validate`
-    /// checks of every fragment), read from what the cut changed. Each involved collapse
+    /// The first fragment (and what is wrong with it) that, after the cut, holds a tet the
+    /// cut made flat or inverted (rounding can put a new point on a face of its tet), or
+    /// whose floor and ceiling do not have the same boundary or hold a face twice (what
+    /// `Mt::validate` checks of every fragment and tet), read from what the cut changed. Each involved collapse
     /// fragment, and each one split off it, is checked whole (`floor` and `ceiling` list
     /// them, as step 3 read them). A root's ceiling and a drain's floor are whole meshes,
     /// closed by their ghosts, and were closed before the cut: they stay closed when the
@@ -1427,6 +1429,18 @@ impl Changed<'_> {
         floor: &[Vec<u32>],
         ceiling: &[Vec<u32>],
     ) -> Result<(), (usize, String)> {
+        let made = self.replaced.iter().map(|r| r.0 as usize);
+        for t in made.chain(self.n_tets..open.tets.len()) {
+            let tet = open.tets[t];
+            if tet[3] == GHOST {
+                continue;
+            }
+            let [a, b, c, d] = tet.map(|v| open.positions[v.idx()]);
+            if crate::geom::orient3d(a, b, c, d) != crate::geom::Sign::Positive {
+                let detail = format!("a tet it made, {tet:?}, is flat or inverted");
+                return Err((open.creator[t].idx(), detail));
+            }
+        }
         let whole = |f: FragmentId, above: bool| match open.kind[f.idx()] {
             FragmentKind::Root => above,
             FragmentKind::Drain => !above,
@@ -1464,7 +1478,8 @@ impl Changed<'_> {
                     f as usize,
                     format!(
                         "the tets the cut made of its {what} have {} boundary faces and {} \
-                         faces doubled, the tets they replace {} and {}",
+                         faces doubled, the tets they replace {} and {}: its floor and \
+                         ceiling do not match",
                         c.boundary[1], c.doubled[1], c.boundary[0], c.doubled[0]
                     ),
                 ));

@@ -207,10 +207,10 @@ pub enum CutError {
     )]
     FlatChild { tet: usize, case: &'static str },
     #[error(
-        "the cut would leave fragment {fragment} of the MT with a floor and a ceiling that do \
-         not match ({detail}): refused, the MT is as it was before the cut. Known cause: a \
-         cut beginning where an earlier crack ends, at an angle to it (a turning or tilting \
-         blade), which MT cuts do not support yet"
+        "the cut would leave fragment {fragment} of the MT inconsistent ({detail}): refused, \
+         the MT is as it was before the cut. Known cause: a cut beginning where an earlier \
+         crack ends, at an angle to it (a turning or tilting blade), which MT cuts do not \
+         support yet"
     )]
     MtInconsistent { fragment: usize, detail: String },
 }
