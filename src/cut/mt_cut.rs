@@ -1390,6 +1390,15 @@ impl MtCutter {
     }
 }
 
+/// The fragment `g` comes from: itself when it is one of the `nf` before the cut, else
+/// the one it was split off (`born`, in the order the cut appended them).
+fn origin_of(g: FragmentId, nf: usize, born: &[FragmentId]) -> FragmentId {
+    match g.idx().checked_sub(nf) {
+        Some(k) => born[k],
+        None => g,
+    }
+}
+
 /// A pool tet a cut wrote in place: its index, and its tet, creator and destroyer before.
 type Replaced = (u32, Tet, FragmentId, FragmentId);
 
@@ -1407,10 +1416,7 @@ struct Changed<'a> {
 impl Changed<'_> {
     /// The fragment each fragment comes from: itself, or the one it was split off.
     fn origin(&self, g: FragmentId) -> FragmentId {
-        match g.idx().checked_sub(self.nf) {
-            Some(k) => self.born[k],
-            None => g,
-        }
+        origin_of(g, self.nf, self.born)
     }
 
     /// The first fragment (and what is wrong with it) that, after the cut, holds a tet the
@@ -1659,10 +1665,7 @@ impl MtCutter {
             open.creator[t] = c;
             open.destroyer[t] = d;
         }
-        let origin = |g: FragmentId| match g.idx().checked_sub(nf) {
-            Some(k) => undo.born[k],
-            None => g,
-        };
+        let origin = |g: FragmentId| origin_of(g, nf, &undo.born);
         for &t in open.relabelled.iter().filter(|&&t| (t as usize) < n_tets) {
             let t = t as usize;
             open.creator[t] = origin(open.creator[t]);
