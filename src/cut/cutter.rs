@@ -308,6 +308,7 @@ impl Cutter {
     /// spare time between cuts keeps reallocation (a copy of every array) out of them.
     pub fn keep_room(&mut self, fraction: f64) {
         let (tets, vertices) = self.mesh.spare();
+        let vertices = vertices.min(self.scales.capacity() - self.scales.len());
         let want_tets = (self.mesh.nb_tets() as f64 * fraction).ceil() as usize;
         let want_vertices = (self.mesh.nb_vertices() as f64 * fraction).ceil() as usize;
         if tets < want_tets || vertices < want_vertices {

@@ -96,6 +96,15 @@ impl Attributes {
         }
     }
 
+    /// How many elements every column can still take without reallocating (`None`: no
+    /// column).
+    pub(crate) fn spare(&self) -> Option<usize> {
+        self.columns
+            .iter()
+            .map(|c| (c.values.capacity() - c.values.len()) / c.components)
+            .min()
+    }
+
     /// Keeps the first `n` elements of every column (an edit given back).
     pub(crate) fn truncate(&mut self, n: usize) {
         for c in &mut self.columns {
@@ -204,5 +213,20 @@ mod tests {
         assert!(s.mismatched(2).is_none());
         assert!(Attribute::new("bad", 2, vec![1.0]).is_none());
         assert!(Attribute::new("bad", 0, vec![]).is_none());
+    }
+
+    #[test]
+    fn spare_is_the_fullest_columns_room() {
+        let mut a = Attributes::new();
+        assert_eq!(a.spare(), None);
+        let mut values = Vec::with_capacity(12);
+        values.extend([1.0, 2.0, 3.0]);
+        a.insert(Attribute::new("v", 3, values).unwrap());
+        let mut values = Vec::with_capacity(2);
+        values.push(0.0);
+        a.insert(Attribute::new("t", 1, values).unwrap());
+        assert_eq!(a.spare(), Some(1));
+        a.reserve(5);
+        assert!(a.spare().is_some_and(|n| n >= 5));
     }
 }

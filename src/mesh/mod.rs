@@ -261,11 +261,17 @@ impl TetMesh {
         self.point_data.reserve(vertices);
     }
 
-    /// How many tets and vertices can still be appended without reallocating.
+    /// How many tets and vertices can still be appended without reallocating: the
+    /// attribute columns count too (they grow apart from the geometry, so one may be full
+    /// while the other has room).
     pub(crate) fn spare(&self) -> (usize, usize) {
+        let tets = self.tets.capacity() - self.tets.len();
+        let vertices = self.positions.capacity() - self.positions.len();
         (
-            self.tets.capacity() - self.tets.len(),
-            self.positions.capacity() - self.positions.len(),
+            self.cell_data.spare().map_or(tets, |c| c.min(tets)),
+            self.point_data
+                .spare()
+                .map_or(vertices, |c| c.min(vertices)),
         )
     }
 
