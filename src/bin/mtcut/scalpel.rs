@@ -151,13 +151,9 @@ pub fn run(args: Args) -> CliResult {
     write_step(0, scalpel.mt(), &mut series)?;
     let start = Instant::now();
     for (k, &to) in blades.iter().enumerate().skip(1) {
-        let step = scalpel.step(to).map_err(|e| {
-            format!(
-                "step {k}: {e}; steps 0-{} written to {}, nothing saved",
-                k - 1,
-                args.output.display()
-            )
-        })?;
+        let step = scalpel
+            .step(to)
+            .map_err(|e| failed_step(k, &e, &args.output))?;
         let t_validate = Instant::now();
         let report = scalpel.mt().validate();
         let validate_seconds = t_validate.elapsed().as_secs_f64();
@@ -240,13 +236,7 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
     let start = Instant::now();
     let mut steps: Vec<Value> = Vec::new();
     for (k, w) in blades.windows(2).enumerate().map(|(k, w)| (k + 1, w)) {
-        let failed = |e: &dyn std::fmt::Display| {
-            format!(
-                "step {k}: {e}; steps 0-{} written to {}, nothing saved",
-                k - 1,
-                args.output.display()
-            )
-        };
+        let failed = |e: &dyn std::fmt::Display| failed_step(k, e, &args.output);
         let sweep =
             scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).map_err(|e| failed(&e))?;
         let (mut frontier_s, mut tets_cut) = (0.0, 0);
@@ -266,13 +256,11 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         let t_validate = Instant::now();
         let (model, mesh) = (live.mt().validate(), live.mesh().validate());
         let validate_seconds = t_validate.elapsed().as_secs_f64();
-        if !model.is_valid() || !mesh.is_valid() {
-            let what = if model.is_valid() {
-                mesh.to_string()
-            } else {
-                model.to_string()
-            };
-            return Err(invalid_step(k, "model", &what, &args.output));
+        if !model.is_valid() {
+            return Err(invalid_step(k, "model", &model, &args.output));
+        }
+        if !mesh.is_valid() {
+            return Err(invalid_step(k, "current mesh", &mesh, &args.output));
         }
         if args.json {
             steps.push(json!({
@@ -450,6 +438,15 @@ impl Series {
     }
 }
 
+/// The error of step `k`: what went wrong, and what the run leaves behind.
+fn failed_step(k: usize, e: &dyn std::fmt::Display, output: &Path) -> String {
+    format!(
+        "step {k}: {e}; steps 0-{} written to {}, nothing saved",
+        k - 1,
+        output.display()
+    )
+}
+
 /// The error of a step that left an invalid `what` (model or mesh).
 fn invalid_step(
     k: usize,
@@ -457,11 +454,6 @@ fn invalid_step(
     report: &dyn std::fmt::Display,
     output: &Path,
 ) -> Box<dyn std::error::Error> {
-    format!(
-        "step {k}: the cut left an invalid {what} ({report}); steps 0-{} written to {}, \
-         nothing saved",
-        k - 1,
-        output.display()
-    )
-    .into()
+    let what = format!("the cut left an invalid {what} ({report})");
+    failed_step(k, &what, output).into()
 }
