@@ -5,6 +5,7 @@
 //! keeping the steps before it and saving nothing. Given a mesh, the scalpel cuts the mesh
 //! itself, and a turning blade works.
 
+mod blades;
 mod cli_support;
 mod common;
 
@@ -144,24 +145,18 @@ fn bad_path_files_are_refused_by_name() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// A path that turns would break the coarser levels at its fourth step (a known limit of
-/// the MT cut, see `mtcut::cut::scalpel`), which the MT cut refuses: the run stops there,
-/// with the steps before it written and listed, and saves nothing.
+/// A blade tilting as it crosses fandisk (tests/mt_scalpel.rs) would break the coarser
+/// levels at its fifth step (a known limit of the MT cut, see `mtcut::cut::scalpel`),
+/// which the MT cut refuses: the run stops there, with the steps before it written and
+/// listed, and saves nothing.
 #[test]
 fn a_step_that_breaks_the_model_stops_the_run() {
-    let dir = scratch("cli_scalpel_turn");
+    let dir = scratch("cli_scalpel_tilt");
     let (model, b) = fandisk_model(&dir);
-    let (c, d) = (b.center(), b.max - b.min);
-    let r = 0.6 * d.x.max(d.y);
-    let (cx, cy) = (b.min.x - 0.1 * d.x, c.y - r);
-    let blades: Vec<[[f64; 3]; 2]> = (0..8)
-        .map(|k| {
-            let a = (90.0 - (-8.0 + 8.0 * k as f64)).to_radians();
-            let (x, y) = (cx + r * a.cos(), cy + r * a.sin());
-            [[x, y, b.min.z - 0.1 * d.z], [x, y, b.max.z + 0.1 * d.z]]
-        })
+    let blades: Vec<[[f64; 3]; 2]> = (0..=10)
+        .map(|k| blades::tilting(&b, k).map(|p| p.to_array()))
         .collect();
-    let path = dir.join("turn.json");
+    let path = dir.join("tilt.json");
     write_path(&path, &blades);
     let out = dir.join("series");
     let saved = dir.join("never.mt");
@@ -177,20 +172,20 @@ fn a_step_that_breaks_the_model_stops_the_run() {
             s(&saved),
         ],
         &[
-            "step 4",
+            "step 5",
             "refused, the MT is as it was",
-            "steps 0-3 written",
+            "steps 0-4 written",
             "nothing saved",
         ],
     );
     assert!(!saved.exists(), "{err}");
     let pvd = std::fs::read_to_string(out.join("scalpel.pvd")).expect("pvd");
-    for k in 0..=3 {
+    for k in 0..=4 {
         let name = format!("step-{k:04}.vtu");
         assert!(pvd.contains(&name), "{name} not listed");
         read_valid(&out.join(&name));
     }
-    assert!(!pvd.contains("step-0004.vtu"));
+    assert!(!pvd.contains("step-0005.vtu"));
     std::fs::remove_dir_all(&dir).ok();
 }
 

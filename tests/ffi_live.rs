@@ -145,22 +145,24 @@ fn a_bent_body_is_cut_frontier_first_then_the_model_catches_up() {
 
 #[test]
 fn a_cut_the_model_refuses_is_counted_in_the_report() {
-    // The blade turning by 8° per step of tests/mt_scalpel.rs: the model refuses the step
-    // that meets the last one's crack at an angle (the known limit). The report counts it
-    // (`refused`), the queue is empty, the current mesh was replaced by the model's
-    // extraction: valid, every vertex named. A caller passing the report's older size
-    // (without `refused`) is not written past `seconds`.
+    // The blade tilting as it crosses fandisk (tests/mt_scalpel.rs): the model refuses a
+    // step that meets the last one's crack at an angle (the known limit). The report
+    // counts it (`refused`), the queue is empty, the current mesh was replaced by the
+    // model's extraction: valid, every vertex named. A caller passing the report's older
+    // size (without `refused`) is not written past `seconds`.
     let l = live();
     let xyz = positions(&l);
-    let b = mtcut::geom::Aabb::from_points(
-        xyz.chunks(3)
-            .map(|p| mtcut::geom::DVec3::new(p[0], p[1], p[2]))
-            .collect::<Vec<_>>()
-            .iter(),
-    );
-    let path: Vec<mtcut::cut::Blade> = (0..8)
-        .map(|k| blades::on_arc(&b, -8.0 + 8.0 * k as f64))
+    let corners: Vec<mtcut::geom::DVec3> = xyz
+        .chunks(3)
+        .map(|p| mtcut::geom::DVec3::new(p[0], p[1], p[2]))
         .collect();
+    let b = mtcut::geom::Aabb::from_points(corners.iter());
+    let path: Vec<mtcut::cut::Blade> = (0..=10).map(|k| blades::tilting(&b, k)).collect();
+    let report = |size: usize| mtcut_pending_report {
+        struct_size: size,
+        refused: 777,
+        ..Default::default()
+    };
     let mut refused_steps = 0;
     for (k, w) in path.windows(2).enumerate() {
         let tolerance = mtcut::geom::Tolerance { relative: 1e-9 };
@@ -170,34 +172,27 @@ fn a_cut_the_model_refuses_is_counted_in_the_report() {
             let n = polygon.points().len();
             ok(unsafe { mtcut_live_cut(l.0, corners.as_ptr(), n, ptr::null_mut()) });
         }
-        // The first step (the blade entering the body: nothing refused) with the older
-        // report: the field after `seconds` untouched.
-        let mut r = mtcut_pending_report {
-            struct_size: if k == 0 {
-                std::mem::offset_of!(mtcut_pending_report, refused)
-            } else {
-                size_of::<mtcut_pending_report>()
-            },
-            refused: 777,
-            ..Default::default()
-        };
+        let mut r = report(size_of::<mtcut_pending_report>());
         ok(unsafe { mtcut_live_process_pending(l.0, 0, 0.0, &mut r) });
         assert_eq!(r.cuts_left, 0, "step {k}: {r:?}");
-        if k == 0 {
-            assert_eq!(r.refused, 777, "written past the caller's size");
-            assert_eq!(r.cuts_done, sweep.len(), "{r:?}");
-        } else {
-            assert_eq!(r.cuts_done + r.refused, sweep.len(), "step {k}: {r:?}");
-            if r.refused > 0 {
-                refused_steps += 1;
-                assert_eq!(r.remeshed, 1, "step {k}: {r:?}");
-            }
+        assert_eq!(r.cuts_done + r.refused, sweep.len(), "step {k}: {r:?}");
+        if r.refused > 0 {
+            refused_steps += 1;
+            assert_eq!(r.remeshed, 1, "step {k}: {r:?}");
         }
         assert!(valid_mesh(&l), "step {k}");
         assert!(!ids(&l).contains(&u32::MAX), "step {k}: a vertex not named");
     }
-    // When MT cuts learn to turn, this test needs another cut the model refuses.
+    // When MT cuts learn to tilt, this test needs another cut the model refuses.
     assert!(refused_steps > 0, "no cut refused");
+    // The older report: nothing written after `seconds`.
+    let square = [
+        -5.0, -5.0, 0.01, 5.0, -5.0, 0.01, 5.0, 5.0, 0.01, -5.0, 5.0, 0.01,
+    ];
+    ok(unsafe { mtcut_live_cut(l.0, square.as_ptr(), 4, ptr::null_mut()) });
+    let mut r = report(std::mem::offset_of!(mtcut_pending_report, refused));
+    ok(unsafe { mtcut_live_process_pending(l.0, 0, 0.0, &mut r) });
+    assert_eq!((r.cuts_done, r.refused), (1, 777), "{r:?}");
 }
 
 #[test]

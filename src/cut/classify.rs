@@ -350,7 +350,8 @@ impl<'a> StateClassifier<'a> {
     /// contour band reaches them, and the two cracks would not join: a bridge of material
     /// would be left at every step. Only tips are taken so: other vertices near C keep the
     /// usual rules. The plain-mesh engine takes them ([`super::CutOptions::continue_cracks`]);
-    /// the MT cut does not (see [`super::mt_cut`]'s limits).
+    /// the MT cut takes those of a cut it continues at an angle (see [`super::mt_cut`]'s
+    /// limits).
     pub fn with_crack_tips(mut self, tips: &'a CrackTips, reach: f64) -> Self {
         if !tips.is_empty() && reach > 0.0 {
             self.tips = Some(tips);

@@ -147,43 +147,39 @@
 //!   on C's plane just outside it (also on a fresh mesh cut through its vertices).
 //! * A crack follows C up to a tet's size near C's contour (the tips, as on a plain
 //!   mesh): a later cut can cross an earlier polygon in that band.
-//! * **Two cracks meeting at an angle are refused.** A step at an angle to the last
-//!   (a turning path; a tilting blade, whose sweeps are two triangles) begins on the line
-//!   where the last crack ended, and that crack's tips on the line lie on both planes: the
-//!   new cut snaps them. A snapped vertex gets one copy, taken by the tets of its negative
-//!   side on every level; around such a tip the earlier crack, at an angle, divides one of
-//!   the new plane's sides, so the two sides are not the groups the cracks separate.
-//!   Traced on fandisk (first tilting sweep; the fourth step of an 8° turn): the two lips
-//!   of the earlier crack both lie on one side of the new plane and keep the same tip
-//!   vertices, and on the coarser levels the edge between two tips bounds four boundary
-//!   faces (fragments' floors and ceilings with doubled ghost faces). Where the earlier
-//!   crack runs on the side away from C, the faces at a tip whose section leaves C also
-//!   get a face point at the margin from it (a flap of crack outside C), which cuts a
-//!   third group out around the tip. Tried: copies decided by the groups of tets around
-//!   each snapped vertex over all levels (joined through faces no crack holds, flaps
-//!   ignored), the group without positive tets (or else the one with negative tets)
-//!   taking the copy. The violations fell (tilting: 61 to 11 fragments; turning: 58 to 4)
-//!   but did not vanish: near some tips the earlier crack's front runs, on some levels,
-//!   through neighbouring tips that the face-point margin keeps inside its contour (off
-//!   the line), so that crack divides the tets around the tip on some levels and not on
-//!   others, and no single copy per vertex suits both. A fix needs the levels to agree
-//!   on the earlier crack's front near the line (or copies per level, which the MT's
-//!   shared vertices exclude). The plain-mesh engine, one mesh with one copy per group,
-//!   cuts the same blades (tests/cut_scalpel.rs). Such a cut is not left in the MT:
-//!   before closing, every fragment the cut changed has its floor and ceiling checked
-//!   for the same boundary, none holding a face twice, and every tet the cut made for a
-//!   positive orientation (what `Mt::validate` checks, read from what the cut changed
-//!   only: `Changed::check`); a cut failing it is given back, the MT byte for byte as
-//!   before, and refused with [`CutError::MtInconsistent`].
-//! * **Crack tips off the plane are not taken** as the plain engine takes them when it
-//!   continues cracks ([`StateClassifier::with_crack_tips`]): tried, tips snapped onto a
-//!   cut up to 1.5 × the contour band off its plane broke the floor/ceiling conformity of
-//!   fragments in random cut sequences (tests/cli_mt_cut.rs, tests/mt_live.rs). A step at
-//!   an angle also meets the last step's tips that the face-point margin keeps off the
-//!   line where it ended (tests/mt_scalpel.rs holds the turning and tilting cases,
-//!   ignored).
+//! * **Two cracks meeting at an angle: handled where the levels agree, refused elsewhere.**
+//!   A step at an angle to the last (a turning path; a tilting blade, whose sweeps are two
+//!   triangles) begins on the line where the last crack ended, and that crack's tips on
+//!   the line lie on both planes. Around such a tip the two cracks together, not the new
+//!   plane, divide the tets: into the convex wedge between them and the rest. When a cut's
+//!   polygon shares an edge with one of the last cuts at rest (`Made`) at an angle, the
+//!   tips that cut made within the tip reach of the new polygon
+//!   ([`StateClassifier::with_crack_tips`], as the plain engine takes them) are on this
+//!   cut, each gets one copy, and every tet holding it takes the copy or not by whether
+//!   its corner at the tip lies in the wedge (`TurnTips`): from its side of the new cut
+//!   and its vertices' sides of the earlier plane — a lip vertex of the earlier crack by
+//!   the lip it is on, any other by its position — so every level decides alike.
+//!   Measured (tests/mt_scalpel.rs): an 8° turn per step stopped inside each shared mesh
+//!   keeps every level valid, and extended through fandisk cuts its corner off as the
+//!   plain engine does. Still refused: steps of the extension on pinion and liver, and
+//!   the tilting blade on fandisk, where a fragment's floor and ceiling disagree near
+//!   the line the cracks share — traced to tips the face-point margin kept off that line
+//!   (the earlier crack's front runs through them on some levels and not on others, so
+//!   the wedge's edge is not where the levels' cracks are). A cut of a deformed body
+//!   (`cut_deformed`) keeps no record: a step continuing one of those at an angle is
+//!   refused as before (tests/mt_live.rs). Before, every such step was refused. Such a
+//!   cut is not left in the MT: before closing, every fragment the cut changed has its
+//!   floor and ceiling checked for the same boundary, none holding a face twice, and
+//!   every tet the cut made for a positive orientation (what `Mt::validate` checks, read
+//!   from what the cut changed only: `Changed::check`); a cut failing it is given back,
+//!   the MT byte for byte as before, and refused with [`CutError::MtInconsistent`].
+//! * **Crack tips off the plane are not taken** otherwise (a cut continuing an earlier
+//!   one in its plane, or crossing it): tried, tips snapped onto a cut up to 1.5 × the
+//!   contour band off its plane broke the floor/ceiling conformity of fragments in random
+//!   cut sequences (tests/cli_mt_cut.rs, tests/mt_live.rs).
 
-use super::classify::{CutScratch, CutSession, NONE, StateClassifier, TetClass, is_candidate};
+use super::classify::is_candidate;
+use super::classify::{CrackTips, CutScratch, CutSession, NONE, StateClassifier, TetClass};
 use super::classify::{VertexOrigin, origin_positions};
 use super::cutter::{push_origin_rows, unsnap, with_twins};
 use super::options::{CutError, CutOptions};
@@ -191,7 +187,7 @@ use super::split::{Children, split_tet};
 use super::stamps::Stamps;
 use super::tables::{NEG, ON, OUT, POS, Side};
 use super::unglue::{StarEntry, plan_copies};
-use crate::geom::{Aabb, CutPolygon, DVec3};
+use crate::geom::{Aabb, CutPolygon, DVec3, Sign};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::{TET_EDGES, TET_FACES, flip_face, oriented_face};
 use crate::mesh::{FragmentId, Tet, TetId, VertexId};
@@ -325,6 +321,8 @@ pub struct MtCutter {
     components: usize,
     /// Per vertex: whether it lies on a crack ([`MtCutter::crack_vertices`]).
     crack: Vec<bool>,
+    /// What this cutter's cuts at rest made (see `Made`).
+    made: Made,
 }
 
 /// Largest `snap` an MT cut accepts (see the module docs, "Limits").
@@ -440,6 +438,7 @@ impl MtCutter {
             links,
             components,
             crack,
+            made: Made::default(),
         })
     }
 
@@ -543,9 +542,22 @@ impl MtCutter {
         };
 
         // Step 1: fragments by box, then the tets they create by vertex states.
-        let classifier = StateClassifier::new(polygon, opts.snap, &bounds, self.max_scale)
+        // Earlier polygons this one continues at an angle (see `TurnTips`): their tips
+        // near the edge they share are on this cut.
+        let turning: Vec<u32> = match deformed {
+            Some(_) => Vec::new(),
+            None => self.made.turning(polygon, self.max_scale),
+        };
+        let mut turning_tips = CrackTips::default();
+        for &i in &turning {
+            self.made.tips(i).for_each(|v| turning_tips.insert(v));
+        }
+        let mut classifier = StateClassifier::new(polygon, opts.snap, &bounds, self.max_scale)
             .with_contour_band(contour_band(&opts))
             .with_crack_vertices(&self.crack);
+        if !turning.is_empty() {
+            classifier = classifier.with_crack_tips(&turning_tips, tip_reach(&opts));
+        }
         let coord = bounds.min.abs().max(self.bounds.max.abs()).max_element();
         let slack = 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element());
         let margin = (2.0 * opts.snap.relative + contour_band(&opts)) * self.max_scale + slack;
@@ -698,6 +710,24 @@ impl MtCutter {
             .iter()
             .map(|&t| mt.fragment_kind(mt.tet_creator(t)) == FragmentKind::Root)
             .collect();
+        // Tips of an earlier crack at an angle to this cut, on the line where it ended
+        // (see `TurnTips`): their two groups are the two sides of both cracks together,
+        // not the sides of this cut, so they are not unsnapped for having several groups
+        // on a side.
+        let mut on_plane: Vec<VertexId> = tets
+            .iter()
+            .zip(&states)
+            .flat_map(|(t, st)| (0..4).filter(|&j| st[j] == ON).map(|j| t[j]))
+            .collect();
+        on_plane.sort_unstable();
+        on_plane.dedup();
+        let turn = TurnTips::new(
+            &on_plane,
+            &turning,
+            &self.made,
+            polygon,
+            1e-6 * self.max_scale,
+        );
         loop {
             let mut star: Vec<StarEntry> = Vec::new();
             let mut on_cut: Vec<VertexId> = Vec::new();
@@ -746,6 +776,7 @@ impl MtCutter {
                     bad.push(w[0].0);
                 }
             }
+            bad.retain(|&v| !turn.has(v));
             bad.sort_unstable();
             bad.dedup();
             if bad.is_empty() {
@@ -822,11 +853,49 @@ impl MtCutter {
         let mut snapped: Vec<VertexId> = around.keys().copied().collect();
         snapped.sort_unstable();
         stats.vertices_snapped = snapped.len();
+        // Per turning tip, whether tets of every level hold it outside and inside the wedge
+        // (then it takes a copy).
+        let mut turn_groups: HashMap<VertexId, [bool; 2], FxBuild> = HashMap::default();
+        if !turn.is_empty() {
+            let early = origin_positions(positions, &origins);
+            let pos = |v: VertexId| {
+                if v.idx() < nv {
+                    positions[v.idx()]
+                } else {
+                    early[v.idx() - nv]
+                }
+            };
+            for (k, class) in classes.iter().enumerate() {
+                if !class.touches_cut() {
+                    continue;
+                }
+                let mut see = |t: &Tet, side: Side| {
+                    for &v in t.iter().filter(|&&v| turn.has(v)) {
+                        let w = turn.in_wedge(v, t, side, &pos);
+                        turn_groups.entry(v).or_default()[usize::from(w)] = true;
+                    }
+                };
+                match child_of[k] {
+                    NONE => see(&tets[k], unsplit_side(k)),
+                    i => {
+                        let ch = &children[i as usize];
+                        for c in 0..ch.len {
+                            see(&ch.tets[c], ch.sides[c]);
+                        }
+                    }
+                }
+            }
+        }
         let mut copy_of: HashMap<VertexId, VertexId, FxBuild> = HashMap::default();
         let mut copies: Vec<VertexId> = Vec::new();
         for &v in &snapped {
             let [p, n, s] = around[&v];
-            if s {
+            if let Some(&[out, inside]) = turn_groups.get(&v) {
+                if out && inside {
+                    copy_of.insert(v, VertexId::from_usize(nv + origins.len() + copies.len()));
+                    copies.push(v);
+                }
+            } else if s {
                 stats.vertices_tips += 1;
             } else if p && n {
                 copy_of.insert(v, VertexId::from_usize(nv + origins.len() + copies.len()));
@@ -861,12 +930,21 @@ impl MtCutter {
                 .all(|&v| is_cut_vertex(v) || out_vertices.binary_search(&v).is_ok())
                 && f.iter().any(|&v| is_cut_vertex(v))
         };
-        let for_side = |t: Tet, side: Side| -> Tet {
-            if side == Side::Negative {
-                t.map(|v| copy_of.get(&v).copied().unwrap_or(v))
-            } else {
-                t
-            }
+        // The tets of the negative side take the copies, except around a turning tip:
+        // there the tets outside the wedge between the two cracks do (`holder` is the real
+        // tet whose side `t` is on: itself, or the tet a ghost's triangle bounds).
+        let for_side = |t: Tet, side: Side, holder: &Tet, at: &[DVec3]| -> Tet {
+            t.map(|v| match copy_of.get(&v) {
+                Some(&c) if turn_groups.contains_key(&v) => {
+                    if turn.in_wedge(v, holder, side, &|u: VertexId| at[u.idx()]) {
+                        v
+                    } else {
+                        c
+                    }
+                }
+                Some(&c) if side == Side::Negative => c,
+                _ => v,
+            })
         };
 
         // Sub-triangles of every subdivided face of a split tet, keyed by the face as the
@@ -892,7 +970,7 @@ impl MtCutter {
                 .try_fold(0b1111, |m, &y| local(y).map(|j| m & !(1 << j)))
                 .unwrap_or(0)
         };
-        let mut sub_faces: HashMap<FaceKey, Vec<(Tet, Side)>, FxBuild> = HashMap::default();
+        let mut sub_faces: HashMap<FaceKey, Vec<(Tet, Side, Tet)>, FxBuild> = HashMap::default();
         for (k, &i) in child_of.iter().enumerate() {
             if i == NONE {
                 continue;
@@ -904,14 +982,14 @@ impl MtCutter {
                 oriented_face(face[0], face[1], face[2])
             });
             let wanted = keys.map(|key| !sub_faces.contains_key(&key));
-            let mut subs: [Vec<(Tet, Side)>; 4] = Default::default();
+            let mut subs: [Vec<(Tet, Side, Tet)>; 4] = Default::default();
             for c in 0..ch.len {
                 let t = ch.tets[c];
                 let under = t.map(|x| faces_under(x, &parent));
                 for cf in TET_FACES {
                     let shared = under[cf[0]] & under[cf[1]] & under[cf[2]];
                     for f in (0..4).filter(|&f| shared & (1 << f) != 0 && wanted[f]) {
-                        subs[f].push(([t[cf[0]], t[cf[1]], t[cf[2]], GHOST], ch.sides[c]));
+                        subs[f].push(([t[cf[0]], t[cf[1]], t[cf[2]], GHOST], ch.sides[c], t));
                     }
                 }
             }
@@ -923,7 +1001,7 @@ impl MtCutter {
         }
         // The side of the tets holding faces with a snapped vertex (for ghosts not
         // subdivided but touching a duplicated vertex).
-        let mut face_side: HashMap<FaceKey, Side, FxBuild> = HashMap::default();
+        let mut face_side: HashMap<FaceKey, (Side, Tet), FxBuild> = HashMap::default();
         for (k, class) in classes.iter().enumerate() {
             if !class.touches_cut() {
                 continue;
@@ -931,14 +1009,14 @@ impl MtCutter {
             match child_of[k] {
                 NONE => {
                     for f in faces_of(&tets[k]) {
-                        face_side.insert(f, unsplit_side(k));
+                        face_side.insert(f, (unsplit_side(k), tets[k]));
                     }
                 }
                 i => {
                     let ch = &children[i as usize];
                     for c in 0..ch.len {
                         for f in faces_of(&ch.tets[c]) {
-                            face_side.insert(f, ch.sides[c]);
+                            face_side.insert(f, (ch.sides[c], ch.tets[c]));
                         }
                     }
                 }
@@ -1017,19 +1095,26 @@ impl MtCutter {
                     if classes[k].touches_cut() {
                         let side = unsplit_side(k);
                         keep(&open, parent.idx(), tets[k]);
-                        open.tets[parent.idx()] = for_side(tets[k], side);
+                        open.tets[parent.idx()] =
+                            for_side(tets[k], side, &tets[k], &open.positions);
                         touched.push(parent.0);
                     }
                 }
                 i => {
                     let ch = &children[i as usize];
                     keep(&open, parent.idx(), tets[k]);
-                    open.tets[parent.idx()] = for_side(ch.tets[0], ch.sides[0]);
+                    open.tets[parent.idx()] =
+                        for_side(ch.tets[0], ch.sides[0], &ch.tets[0], &open.positions);
                     touched.push(parent.0);
                     let (c, d) = (open.creator[parent.idx()], open.destroyer[parent.idx()]);
                     for j in 1..ch.len {
                         touched.push(open.tets.len() as u32);
-                        open.tets.push(for_side(ch.tets[j], ch.sides[j]));
+                        open.tets.push(for_side(
+                            ch.tets[j],
+                            ch.sides[j],
+                            &ch.tets[j],
+                            &open.positions,
+                        ));
                         open.creator.push(c);
                         open.destroyer.push(d);
                         appended_parents.push(parent.0);
@@ -1050,19 +1135,22 @@ impl MtCutter {
                 stats.ghosts_split += 1;
                 let (c, d) = (open.creator[g], open.destroyer[g]);
                 keep(&open, g, tet);
-                open.tets[g] = for_side(subs[0].0, subs[0].1);
+                open.tets[g] = for_side(subs[0].0, subs[0].1, &subs[0].2, &open.positions);
                 ghost_touched.push(g as u32);
-                for &(t, side) in &subs[1..] {
+                for &(t, side, holder) in &subs[1..] {
                     ghost_touched.push(open.tets.len() as u32);
-                    open.tets.push(for_side(t, side));
+                    open.tets.push(for_side(t, side, &holder, &open.positions));
                     open.creator.push(c);
                     open.destroyer.push(d);
                     appended_parents.push(g as u32);
                 }
             } else if tet[..3].iter().any(|v| around.contains_key(v)) {
-                let side = face_side.get(&key).copied().unwrap_or(Side::Positive);
+                let (side, holder) = face_side
+                    .get(&key)
+                    .copied()
+                    .unwrap_or((Side::Positive, tet));
                 keep(&open, g, tet);
-                open.tets[g] = for_side(tet, side);
+                open.tets[g] = for_side(tet, side, &holder, &open.positions);
                 ghost_touched.push(g as u32);
             }
         }
@@ -1381,6 +1469,11 @@ impl MtCutter {
         );
         stats.components = self.components;
         self.mt = Some(mt);
+        if deformed.is_none() {
+            self.made.record(polygon, nv, &origins, &copies, |v| {
+                turn_groups.contains_key(&v)
+            });
+        }
         self.last_origins = origins;
         self.last_origins
             .extend(copies.iter().map(|&of| VertexOrigin::Copy { of }));
@@ -1388,6 +1481,220 @@ impl MtCutter {
         stats.time.total = start.elapsed().as_secs_f64();
         Ok(stats)
     }
+}
+
+/// The snapped vertices of a cut that are tips of an earlier crack made at an angle to it
+/// (paper §5's scalpel turning or tilting between steps): the new polygon begins on the
+/// line where the earlier one ended, and that crack's tips on the line lie on both planes.
+/// Around such a tip the two cracks together divide the tets into a wedge — on the side
+/// of the earlier plane where the new polygon lies and on the side of the new plane where
+/// the earlier polygon lies — and the rest; the tip takes one copy for the rest. Each tet's
+/// group follows from its side of the new cut and its vertices' sides of the earlier plane
+/// (`in_wedge`), the same on every level.
+struct TurnTips<'a> {
+    /// Per turning tip: the cut that made it (in `made`), its polygon, and the wedge's
+    /// side of each plane.
+    tips: HashMap<VertexId, (u32, &'a CutPolygon, Sign, Sign), FxBuild>,
+    made: &'a Made,
+    /// Points this close to a plane are on it: the tips and the earlier crack's lips lie
+    /// on it up to rounding.
+    tolerance: f64,
+}
+
+impl<'a> TurnTips<'a> {
+    fn new(
+        snapped: &[VertexId],
+        turning: &[u32],
+        made: &'a Made,
+        polygon: &CutPolygon,
+        tolerance: f64,
+    ) -> TurnTips<'a> {
+        let mut tips: HashMap<VertexId, (u32, &CutPolygon, Sign, Sign), FxBuild> =
+            HashMap::default();
+        if !turning.is_empty() {
+            for &v in snapped {
+                match made.kind(v) {
+                    Some((i, TIP)) if turning.binary_search(&i).is_ok() => {
+                        let old = &made.cuts[i as usize].polygon;
+                        let (s_old, s_new) = wedge_sides(old, polygon);
+                        tips.insert(v, (i, old, s_old, s_new));
+                    }
+                    _ => {}
+                }
+            }
+        }
+        TurnTips {
+            tips,
+            made,
+            tolerance,
+        }
+    }
+
+    fn is_empty(&self) -> bool {
+        self.tips.is_empty()
+    }
+
+    fn has(&self, v: VertexId) -> bool {
+        self.tips.contains_key(&v)
+    }
+
+    /// Whether tet `t`, holding turning tip `v` and on `side` of this cut, lies in the
+    /// wedge between the two cracks: on the wedge's side of this cut (a tet crossed by
+    /// its plane outside C lies beyond the earlier crack, outside), and with every other
+    /// vertex on the wedge's side of the earlier polygon's plane or on it — a lip vertex
+    /// of the earlier crack by the lip it is on (lips lie in that plane, where positions
+    /// would decide by rounding), any other by its position. The wedge is convex and no
+    /// tet crosses a crack, so the tet's corner at `v` lies in it when every edge from `v`
+    /// does.
+    fn in_wedge(&self, v: VertexId, t: &Tet, side: Side, pos: &impl Fn(VertexId) -> DVec3) -> bool {
+        let (i, old, s_old, s_new) = self.tips[&v];
+        let new_side = match side {
+            Side::Positive => Sign::Positive,
+            Side::Negative => Sign::Negative,
+            Side::Straddle => return false,
+        };
+        if new_side != s_new {
+            return false;
+        }
+        // The tet's corner at `v` lies in the wedge when every edge from `v` does: the
+        // wedge is convex, and no tet crosses a crack.
+        t.iter().filter(|&&u| u != GHOST && u != v).all(|&u| {
+            let a = match self.made.kind(u) {
+                Some((j, LIP_POSITIVE)) if j == i => Sign::Positive,
+                Some((j, LIP_NEGATIVE)) if j == i => Sign::Negative,
+                _ => {
+                    let d = old.signed_distance(pos(u));
+                    if d.abs() <= self.tolerance {
+                        Sign::Zero
+                    } else if d > 0.0 {
+                        Sign::Positive
+                    } else {
+                        Sign::Negative
+                    }
+                }
+            };
+            a == Sign::Zero || a == s_old
+        })
+    }
+}
+
+/// Kinds of the vertices a cut appended, as `Made` keeps them.
+const TIP: u8 = 0;
+const LIP_POSITIVE: u8 = 1;
+const LIP_NEGATIVE: u8 = 2;
+/// A turning tip's copy: where two cracks meet, on no lip.
+const JUNCTION: u8 = 3;
+
+/// What the cuts at rest of a cutter made, per cut: its polygon and the kind of each
+/// vertex it appended (a byte per vertex) — what a later cut that continues one at an
+/// angle reads (`TurnTips`). Cuts of a deformed body (their polygons lie in another frame)
+/// are not kept: a cut continuing one of those at an angle is refused as before.
+#[derive(Default)]
+struct Made {
+    cuts: Vec<MadeBy>,
+}
+
+struct MadeBy {
+    polygon: CutPolygon,
+    /// The first vertex the cut appended, and the kind of each.
+    first: u32,
+    kinds: Vec<u8>,
+}
+
+impl Made {
+    /// How many of the last cuts a cut is checked against for continuing one at an angle.
+    const RECENT: usize = 8;
+
+    /// Keeps what a cut by `polygon` appended from vertex `first`: `origins`, then a copy
+    /// of each of `copies` (`turning`: whether a copied vertex was a turning tip).
+    fn record(
+        &mut self,
+        polygon: &CutPolygon,
+        first: usize,
+        origins: &[VertexOrigin],
+        copies: &[VertexId],
+        turning: impl Fn(VertexId) -> bool,
+    ) {
+        if origins.is_empty() && copies.is_empty() {
+            return;
+        }
+        let kinds = origins
+            .iter()
+            .map(|o| match o {
+                VertexOrigin::Face { .. } => TIP,
+                VertexOrigin::Edge { positive: true, .. } => LIP_POSITIVE,
+                VertexOrigin::Edge { .. } => LIP_NEGATIVE,
+                VertexOrigin::Copy { .. } => JUNCTION,
+            })
+            .chain(
+                copies
+                    .iter()
+                    .map(|&of| if turning(of) { JUNCTION } else { LIP_NEGATIVE }),
+            )
+            .collect();
+        self.cuts.push(MadeBy {
+            polygon: polygon.clone(),
+            first: first as u32,
+            kinds,
+        });
+    }
+
+    /// The cut that appended `v` (an index in `cuts`) and its kind, if a kept cut did.
+    fn kind(&self, v: VertexId) -> Option<(u32, u8)> {
+        let i = self
+            .cuts
+            .partition_point(|c| c.first <= v.0)
+            .checked_sub(1)?;
+        let c = &self.cuts[i];
+        c.kinds
+            .get((v.0 - c.first) as usize)
+            .map(|&k| (i as u32, k))
+    }
+
+    /// The kept cuts whose polygon `polygon` continues at an angle (`turns_from`), among
+    /// the last [`Made::RECENT`]: a blade's step continues the step before it (a tilting
+    /// blade's second triangle, the first), so older cuts are not searched on every cut.
+    fn turning(&self, polygon: &CutPolygon, scale: f64) -> Vec<u32> {
+        let from = self.cuts.len().saturating_sub(Made::RECENT) as u32;
+        (from..self.cuts.len() as u32)
+            .filter(|&i| turns_from(&self.cuts[i as usize].polygon, polygon, scale))
+            .collect()
+    }
+
+    /// The tips cut `i` made.
+    fn tips(&self, i: u32) -> impl Iterator<Item = VertexId> + '_ {
+        let c = &self.cuts[i as usize];
+        (0..c.kinds.len())
+            .filter(|&k| c.kinds[k] == TIP)
+            .map(move |k| VertexId(c.first + k as u32))
+    }
+}
+
+/// The sides of the wedge between an earlier crack (`old`) and a cut continuing it at an
+/// angle (`new`): the side of the old plane where the new polygon lies, and of the new
+/// plane where the old polygon lies (by their centroids).
+fn wedge_sides(old: &CutPolygon, new: &CutPolygon) -> (Sign, Sign) {
+    let centroid =
+        |p: &CutPolygon| p.points().iter().copied().sum::<DVec3>() / p.points().len() as f64;
+    (old.side(centroid(new)), new.side(centroid(old)))
+}
+
+/// Whether `new` continues `old` at an angle: they share an edge (two corners, to within
+/// `scale` × 1e-9) and their planes differ by more than rounding (polygons meant to lie in
+/// one plane, a straight blade's steps, have normals apart by ~1e-16: they continue in the
+/// plane, as before).
+fn turns_from(old: &CutPolygon, new: &CutPolygon, scale: f64) -> bool {
+    if old.normal().cross(new.normal()).length() <= 1e-9 {
+        return false;
+    }
+    let tolerance = 1e-9 * scale;
+    let shared = old
+        .points()
+        .iter()
+        .filter(|p| new.points().iter().any(|q| p.distance(*q) <= tolerance))
+        .count();
+    let (a, b) = wedge_sides(old, new);
+    shared >= 2 && a != Sign::Zero && b != Sign::Zero
 }
 
 /// The fragment `g` comes from: itself when it is one of the `nf` before the cut, else

@@ -209,8 +209,8 @@ pub enum CutError {
     #[error(
         "the cut would leave fragment {fragment} of the MT inconsistent ({detail}): refused, \
          the MT is as it was before the cut. Known cause: a cut beginning where an earlier \
-         crack ends, at an angle to it (a turning or tilting blade), which MT cuts do not \
-         support yet"
+         crack ends, at an angle to it (a turning or tilting blade), which MT cuts support \
+         only where every level agrees on where that crack ended"
     )]
     MtInconsistent { fragment: usize, detail: String },
 }

@@ -19,10 +19,14 @@
 //! * So do an incision ending inside the body and extended later, and a second incision
 //!   ending on the first (T) or crossing it (X), in any plane (tests/mt_scalpel.rs).
 //! * A step at an angle to the last (a turning path, a tilting blade) meets the last
-//!   step's crack at an angle, which would break the coarser levels (see
-//!   [`super::mt_cut`]'s limits: one copy per snapped vertex cannot follow two cracks
-//!   meeting at an angle). The MT cut checks each fragment it changed and refuses such a
-//!   step ([`CutError::MtInconsistent`]), the MT left as it was; the CLI stops there.
+//!   step's crack at an angle: the tips where it ended take one copy each, for the tets
+//!   outside the wedge between the two cracks ([`super::mt_cut`]'s limits). An incision
+//!   turning by 8° per step keeps every level valid on the three shared meshes while it
+//!   stays inside, and cuts a corner off fandisk when extended; extended through pinion
+//!   and liver, and for a blade tilting across fandisk, a step breaks a fragment where the
+//!   levels disagree on the last crack's end. The MT cut checks each fragment it changed
+//!   and refuses such a step ([`CutError::MtInconsistent`]), the MT left as it was; the
+//!   CLI stops there.
 
 use super::mt_cut::{MtCutStats, MtCutter};
 use super::options::{CutError, CutOptions};

@@ -61,6 +61,10 @@ pub fn requests(mt: &Mt, thresholds: usize, regions: usize, rng: &mut Rng) -> Ve
     out
 }
 
+/// How far (relative to its scale) from a cut a crack tip it continues may lie: 1.5 × the
+/// MT cut's face-point margin (`mt_cut::tip_reach`).
+const TIP_REACH: f64 = 1.5 * mtcut::cut::MIN_FACE_POINT_MARGIN;
+
 /// An edge of `mesh` crossing one of `polygons` strictly inside it, away from vertices
 /// within snapping distance of the plane (`near(v, polygon)`).
 ///
@@ -101,6 +105,13 @@ pub fn crossing(
                 // Distance of the crossing from C's contour (C is convex).
                 let band = polygon.inside_margin(x);
                 if k < last && band <= 2.0 * scale(u).max(scale(w)) {
+                    continue;
+                }
+                // A crack tip of an earlier step that this one continues at an angle is
+                // taken onto the cut within the tip reach of C's contour, off the plane
+                // (`mt_cut`'s `TurnTips`): the crack bends through it there.
+                let reach = TIP_REACH * scale(u).max(scale(w));
+                if band <= reach && du.abs().min(dw.abs()) <= reach {
                     continue;
                 }
                 return Some(format!(
