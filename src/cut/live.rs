@@ -49,7 +49,10 @@
 //!   current mesh is replaced by the extraction.
 //! * A body moving *between* the steps of one incision: the last step's crack tips on the
 //!   coarser levels, placed by combinations of moved vertices, no longer lie in the next
-//!   sweep's plane (the turning blade of [`super::scalpel`]) and the MT breaks.
+//!   sweep's plane, and a cut of a deformed body keeps no record for the next step to
+//!   turn from (see [`super::mt_cut`]'s limits): the MT refuses that step's cut, which
+//!   [`process_pending`](LiveMt::process_pending) drops and reports
+//!   ([`PendingReport::refused`]), the current mesh extracted again without it.
 //! * A queued cut is processed whole: [`process_pending`](LiveMt::process_pending) checks
 //!   its budget between cuts, so it may overrun by one cut (the DAG update of a cut is one
 //!   step over all its fragments, [`super::mt_cut`]).
