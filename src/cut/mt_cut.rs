@@ -544,13 +544,13 @@ impl MtCutter {
         // Step 1: fragments by box, then the tets they create by vertex states.
         // Earlier polygons this one continues at an angle (see `TurnTips`): their tips
         // near the edge they share are on this cut.
-        let turning: Vec<u32> = match deformed {
+        let turning: Vec<Turning> = match deformed {
             Some(_) => Vec::new(),
             None => self.made.turning(polygon, self.max_scale),
         };
         let mut turning_tips = CrackTips::default();
-        for &i in &turning {
-            self.made.tips(i).for_each(|v| turning_tips.insert(v));
+        for t in &turning {
+            self.made.tips(t.cut).for_each(|v| turning_tips.insert(v));
         }
         let mut classifier = StateClassifier::new(polygon, opts.snap, &bounds, self.max_scale)
             .with_contour_band(contour_band(&opts))
@@ -714,20 +714,7 @@ impl MtCutter {
         // (see `TurnTips`): their two groups are the two sides of both cracks together,
         // not the sides of this cut, so they are not unsnapped for having several groups
         // on a side.
-        let mut on_plane: Vec<VertexId> = tets
-            .iter()
-            .zip(&states)
-            .flat_map(|(t, st)| (0..4).filter(|&j| st[j] == ON).map(|j| t[j]))
-            .collect();
-        on_plane.sort_unstable();
-        on_plane.dedup();
-        let turn = TurnTips::new(
-            &on_plane,
-            &turning,
-            &self.made,
-            polygon,
-            1e-6 * self.max_scale,
-        );
+        let turn = TurnTips::new(&tets, &states, &turning, &self.made, 1e-6 * self.max_scale);
         loop {
             let mut star: Vec<StarEntry> = Vec::new();
             let mut on_cut: Vec<VertexId> = Vec::new();
@@ -890,14 +877,15 @@ impl MtCutter {
         let mut copies: Vec<VertexId> = Vec::new();
         for &v in &snapped {
             let [p, n, s] = around[&v];
-            if let Some(&[out, inside]) = turn_groups.get(&v) {
-                if out && inside {
-                    copy_of.insert(v, VertexId::from_usize(nv + origins.len() + copies.len()));
-                    copies.push(v);
+            let copy = match turn_groups.get(&v) {
+                Some(&[out, inside]) => out && inside,
+                None if s => {
+                    stats.vertices_tips += 1;
+                    false
                 }
-            } else if s {
-                stats.vertices_tips += 1;
-            } else if p && n {
+                None => p && n,
+            };
+            if copy {
                 copy_of.insert(v, VertexId::from_usize(nv + origins.len() + copies.len()));
                 copies.push(v);
             }
@@ -1502,24 +1490,29 @@ struct TurnTips<'a> {
 }
 
 impl<'a> TurnTips<'a> {
+    /// The turning tips among the vertices on the cut (`ON`) of the candidates `tets`
+    /// (vertex states `states`), made by the `turning` cuts.
     fn new(
-        snapped: &[VertexId],
-        turning: &[u32],
+        tets: &[Tet],
+        states: &[[u8; 4]],
+        turning: &[Turning],
         made: &'a Made,
-        polygon: &CutPolygon,
         tolerance: f64,
     ) -> TurnTips<'a> {
         let mut tips: HashMap<VertexId, (u32, &CutPolygon, Sign, Sign), FxBuild> =
             HashMap::default();
         if !turning.is_empty() {
-            for &v in snapped {
-                match made.kind(v) {
-                    Some((i, TIP)) if turning.binary_search(&i).is_ok() => {
-                        let old = &made.cuts[i as usize].polygon;
-                        let (s_old, s_new) = wedge_sides(old, polygon);
-                        tips.insert(v, (i, old, s_old, s_new));
-                    }
-                    _ => {}
+            let on_cut = tets
+                .iter()
+                .zip(states)
+                .flat_map(|(t, st)| (0..4).filter(|&j| st[j] == ON).map(|j| t[j]));
+            for v in on_cut {
+                let Some((i, TIP)) = made.kind(v) else {
+                    continue;
+                };
+                if let Some(t) = turning.iter().find(|t| t.cut == i) {
+                    let old = &made.cuts[i as usize].polygon;
+                    tips.insert(v, (i, old, t.s_old, t.s_new));
                 }
             }
         }
@@ -1654,10 +1647,13 @@ impl Made {
     /// The kept cuts whose polygon `polygon` continues at an angle (`turns_from`), among
     /// the last [`Made::RECENT`]: a blade's step continues the step before it (a tilting
     /// blade's second triangle, the first), so older cuts are not searched on every cut.
-    fn turning(&self, polygon: &CutPolygon, scale: f64) -> Vec<u32> {
+    fn turning(&self, polygon: &CutPolygon, scale: f64) -> Vec<Turning> {
         let from = self.cuts.len().saturating_sub(Made::RECENT) as u32;
         (from..self.cuts.len() as u32)
-            .filter(|&i| turns_from(&self.cuts[i as usize].polygon, polygon, scale))
+            .filter_map(|cut| {
+                let (s_old, s_new) = turns_from(&self.cuts[cut as usize].polygon, polygon, scale)?;
+                Some(Turning { cut, s_old, s_new })
+            })
             .collect()
     }
 
@@ -1679,13 +1675,20 @@ fn wedge_sides(old: &CutPolygon, new: &CutPolygon) -> (Sign, Sign) {
     (old.side(centroid(new)), new.side(centroid(old)))
 }
 
-/// Whether `new` continues `old` at an angle: they share an edge (two corners, to within
-/// `scale` × 1e-9) and their planes differ by more than rounding (polygons meant to lie in
-/// one plane, a straight blade's steps, have normals apart by ~1e-16: they continue in the
-/// plane, as before).
-fn turns_from(old: &CutPolygon, new: &CutPolygon, scale: f64) -> bool {
+/// A kept cut that a new one continues at an angle, with the wedge's sides (`wedge_sides`).
+struct Turning {
+    cut: u32,
+    s_old: Sign,
+    s_new: Sign,
+}
+
+/// The wedge's sides when `new` continues `old` at an angle: they share an edge (two
+/// corners, to within `scale` × 1e-9) and their planes differ by more than rounding
+/// (polygons meant to lie in one plane, a straight blade's steps, have normals apart by
+/// ~1e-16: they continue in the plane, as before).
+fn turns_from(old: &CutPolygon, new: &CutPolygon, scale: f64) -> Option<(Sign, Sign)> {
     if old.normal().cross(new.normal()).length() <= 1e-9 {
-        return false;
+        return None;
     }
     let tolerance = 1e-9 * scale;
     let shared = old
@@ -1694,7 +1697,7 @@ fn turns_from(old: &CutPolygon, new: &CutPolygon, scale: f64) -> bool {
         .filter(|p| new.points().iter().any(|q| p.distance(*q) <= tolerance))
         .count();
     let (a, b) = wedge_sides(old, new);
-    shared >= 2 && a != Sign::Zero && b != Sign::Zero
+    (shared >= 2 && a != Sign::Zero && b != Sign::Zero).then_some((a, b))
 }
 
 /// The fragment `g` comes from: itself when it is one of the `nf` before the cut, else
@@ -1729,12 +1732,12 @@ impl Changed<'_> {
     /// The first fragment (and what is wrong with it) that, after the cut, holds a tet the
     /// cut made flat or inverted (rounding can put a new point on a face of its tet), or
     /// whose floor and ceiling do not have the same boundary or hold a face twice (what
-    /// `Mt::validate` checks of every fragment and tet), read from what the cut changed. Each involved collapse
-    /// fragment, and each one split off it, is checked whole (`floor` and `ceiling` list
-    /// them, as step 3 read them). A root's ceiling and a drain's floor are whole meshes,
-    /// closed by their ghosts, and were closed before the cut: they stay closed when the
-    /// tets the cut made of them (in place and appended) have the boundary of the tets it
-    /// replaced, none twice.
+    /// `Mt::validate` checks of every fragment and tet), read from what the cut changed.
+    /// Each involved collapse fragment, and each one split off it, is checked whole
+    /// (`floor` and `ceiling` list them, as step 3 read them). A root's ceiling and a
+    /// drain's floor are whole meshes, closed by their ghosts, and were closed before the
+    /// cut: they stay closed when the tets the cut made of them (in place and appended)
+    /// have the boundary of the tets it replaced, none twice.
     fn check(
         &self,
         open: &OpenMt,
