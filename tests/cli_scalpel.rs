@@ -145,16 +145,16 @@ fn bad_path_files_are_refused_by_name() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// A blade tilting as it crosses fandisk (tests/mt_scalpel.rs) would break the coarser
-/// levels at its fifth step (a known limit of the MT cut, see `mtcut::cut::scalpel`),
-/// which the MT cut refuses: the run stops there, with the steps before it written and
-/// listed, and saves nothing.
+/// A blade tilting as it crosses fandisk in 20 steps (tests/mt_scalpel.rs) would break
+/// the MT's levels at its eleventh step (a known limit of the MT cut, see
+/// `mtcut::cut::scalpel`), which the MT cut refuses: the run stops there, with the steps
+/// before it written and listed, and saves nothing.
 #[test]
 fn a_step_that_breaks_the_model_stops_the_run() {
     let dir = scratch("cli_scalpel_tilt");
     let (model, b) = fandisk_model(&dir);
-    let blades: Vec<[[f64; 3]; 2]> = (0..=10)
-        .map(|k| blades::tilting(&b, k).map(|p| p.to_array()))
+    let blades: Vec<[[f64; 3]; 2]> = (0..=20)
+        .map(|k| blades::tilting_in(&b, k, 20).map(|p| p.to_array()))
         .collect();
     let path = dir.join("tilt.json");
     write_path(&path, &blades);
@@ -172,20 +172,20 @@ fn a_step_that_breaks_the_model_stops_the_run() {
             s(&saved),
         ],
         &[
-            "step 5",
+            "step 11",
             "refused, the MT is as it was",
-            "steps 0-4 written",
+            "steps 0-10 written",
             "nothing saved",
         ],
     );
     assert!(!saved.exists(), "{err}");
     let pvd = std::fs::read_to_string(out.join("scalpel.pvd")).expect("pvd");
-    for k in 0..=4 {
+    for k in 0..=10 {
         let name = format!("step-{k:04}.vtu");
         assert!(pvd.contains(&name), "{name} not listed");
         read_valid(&out.join(&name));
     }
-    assert!(!pvd.contains("step-0005.vtu"));
+    assert!(!pvd.contains("step-0011.vtu"));
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -145,11 +145,11 @@ fn a_bent_body_is_cut_frontier_first_then_the_model_catches_up() {
 
 #[test]
 fn a_cut_the_model_refuses_is_counted_in_the_report() {
-    // The blade tilting as it crosses fandisk (tests/mt_scalpel.rs): the model refuses a
-    // step that meets the last one's crack at an angle (the known limit). The report
-    // counts it (`refused`), the queue is empty, the current mesh was replaced by the
-    // model's extraction: valid, every vertex named. A caller passing the report's older
-    // size (without `refused`) is not written past `seconds`.
+    // The blade tilting as it crosses fandisk in 20 steps (tests/mt_scalpel.rs): the model
+    // refuses steps that meet the last one's crack at a steep angle (the known limit). The
+    // report counts them (`refused`), the queue is empty, the current mesh was replaced by
+    // the model's extraction: valid, every vertex named. A caller passing the report's
+    // older size (without `refused`) is not written past `seconds`.
     let l = live();
     let xyz = positions(&l);
     let corners: Vec<mtcut::geom::DVec3> = xyz
@@ -157,7 +157,7 @@ fn a_cut_the_model_refuses_is_counted_in_the_report() {
         .map(|p| mtcut::geom::DVec3::new(p[0], p[1], p[2]))
         .collect();
     let b = mtcut::geom::Aabb::from_points(corners.iter());
-    let path: Vec<mtcut::cut::Blade> = (0..=10).map(|k| blades::tilting(&b, k)).collect();
+    let path: Vec<mtcut::cut::Blade> = (0..=20).map(|k| blades::tilting_in(&b, k, 20)).collect();
     let report = |size: usize| mtcut_pending_report {
         struct_size: size,
         refused: 777,

@@ -158,14 +158,22 @@
 //!   cut, each gets one copy, and every tet holding it takes the copy or not by whether
 //!   its corner at the tip lies in the wedge (`TurnTips`): from its side of the new cut
 //!   and its vertices' sides of the earlier plane — a lip vertex of the earlier crack by
-//!   the lip it is on, any other by its position — so every level decides alike.
-//!   Measured (tests/mt_scalpel.rs): an 8° turn per step stopped inside each shared mesh
-//!   keeps every level valid, and extended through fandisk cuts its corner off as the
-//!   plain engine does. Still refused: steps of the extension on pinion and liver, and
-//!   the tilting blade on fandisk, where a fragment's floor and ceiling disagree near
-//!   the line the cracks share — traced to tips the face-point margin kept off that line
-//!   (the earlier crack's front runs through them on some levels and not on others, so
-//!   the wedge's edge is not where the levels' cracks are). A cut of a deformed body
+//!   the lip it is on, a tip the earlier cut itself took from the cut before it (and its
+//!   copy) as on that crack, any other by its position — so every level decides alike.
+//!   (Those taken tips lie up to the tip reach off the earlier plane, on its crack, which
+//!   bends through them: by position, coarse and fine tets around a tip decided apart.)
+//!   Measured (tests/mt_scalpel.rs and runs of other paths): an incision turning by 4°
+//!   to 30° per step through the body's depth, stopped inside and extended through each
+//!   shared mesh, keeps every level valid and cuts a corner off each, as the plain
+//!   engine does; a blade tilting back and forth across them in 10 steps separates each.
+//!   Still refused: some steps at steeper angles (the same tilt in 20 steps, on the three
+//!   meshes) and of a turning blade whose edge ends inside pinion or liver (its crack's
+//!   lower edge ends inside the body too), where a fragment's floor and ceiling disagree
+//!   near the line the cracks share. Tried and dropped: deciding the copies by the groups
+//!   tets form around each tip (joined through faces), the same over all levels — the
+//!   two cracks' fronts leave slivers between them that join the groups, so tips kept no
+//!   copy and the boundary was pinched at them; counting this cut's own points as on the
+//!   earlier plane (more steps refused). A cut of a deformed body
 //!   (`cut_deformed`) keeps no record: a step continuing one of those at an angle is
 //!   refused as before (tests/mt_live.rs). Before, every such step was refused. Such a
 //!   cut is not left in the MT: before closing, every fragment the cut changed has its
@@ -715,6 +723,7 @@ impl MtCutter {
         // not the sides of this cut, so they are not unsnapped for having several groups
         // on a side.
         let turn = TurnTips::new(&tets, &states, &turning, &self.made, 1e-6 * self.max_scale);
+        let taken = turn.taken();
         loop {
             let mut star: Vec<StarEntry> = Vec::new();
             let mut on_cut: Vec<VertexId> = Vec::new();
@@ -1458,9 +1467,7 @@ impl MtCutter {
         stats.components = self.components;
         self.mt = Some(mt);
         if deformed.is_none() {
-            self.made.record(polygon, nv, &origins, &copies, |v| {
-                turn_groups.contains_key(&v)
-            });
+            self.made.record(polygon, nv, &origins, &copies, taken);
         }
         self.last_origins = origins;
         self.last_origins
@@ -1531,6 +1538,13 @@ impl<'a> TurnTips<'a> {
         self.tips.contains_key(&v)
     }
 
+    /// The turning tips, sorted: what the cut took onto its crack ([`MadeBy::taken`]).
+    fn taken(&self) -> Vec<VertexId> {
+        let mut taken: Vec<VertexId> = self.tips.keys().copied().collect();
+        taken.sort_unstable();
+        taken
+    }
+
     /// Whether tet `t`, holding turning tip `v` and on `side` of this cut, lies in the
     /// wedge between the two cracks: on the wedge's side of this cut (a tet crossed by
     /// its plane outside C lies beyond the earlier crack, outside), and with every other
@@ -1555,6 +1569,11 @@ impl<'a> TurnTips<'a> {
             let a = match self.made.kind(u) {
                 Some((j, LIP_POSITIVE)) if j == i => Sign::Positive,
                 Some((j, LIP_NEGATIVE)) if j == i => Sign::Negative,
+                // The earlier crack bent through the tips it took (and their copies), up
+                // to the tip reach off its plane: on that crack, where positions would
+                // put them on a side.
+                Some((j, JUNCTION)) if j == i => Sign::Zero,
+                _ if self.made.cuts[i as usize].took(u) => Sign::Zero,
                 _ => {
                     let d = old.signed_distance(pos(u));
                     if d.abs() <= self.tolerance {
@@ -1592,6 +1611,14 @@ struct MadeBy {
     /// The first vertex the cut appended, and the kind of each.
     first: u32,
     kinds: Vec<u8>,
+    /// The turning tips of earlier cuts the cut took onto its crack, sorted.
+    taken: Vec<VertexId>,
+}
+
+impl MadeBy {
+    fn took(&self, v: VertexId) -> bool {
+        self.taken.binary_search(&v).is_ok()
+    }
 }
 
 impl Made {
@@ -1599,14 +1626,14 @@ impl Made {
     const RECENT: usize = 8;
 
     /// Keeps what a cut by `polygon` appended from vertex `first`: `origins`, then a copy
-    /// of each of `copies` (`turning`: whether a copied vertex was a turning tip).
+    /// of each of `copies`; `taken`: the turning tips it took (sorted).
     fn record(
         &mut self,
         polygon: &CutPolygon,
         first: usize,
         origins: &[VertexOrigin],
         copies: &[VertexId],
-        turning: impl Fn(VertexId) -> bool,
+        taken: Vec<VertexId>,
     ) {
         if origins.is_empty() && copies.is_empty() {
             return;
@@ -1619,16 +1646,19 @@ impl Made {
                 VertexOrigin::Edge { .. } => LIP_NEGATIVE,
                 VertexOrigin::Copy { .. } => JUNCTION,
             })
-            .chain(
-                copies
-                    .iter()
-                    .map(|&of| if turning(of) { JUNCTION } else { LIP_NEGATIVE }),
-            )
+            .chain(copies.iter().map(|&of| {
+                if taken.binary_search(&of).is_ok() {
+                    JUNCTION
+                } else {
+                    LIP_NEGATIVE
+                }
+            }))
             .collect();
         self.cuts.push(MadeBy {
             polygon: polygon.clone(),
             first: first as u32,
             kinds,
+            taken,
         });
     }
 

@@ -22,11 +22,12 @@
 //!   step's crack at an angle: the tips where it ended take one copy each, for the tets
 //!   outside the wedge between the two cracks ([`super::mt_cut`]'s limits). An incision
 //!   turning by 8° per step keeps every level valid on the three shared meshes while it
-//!   stays inside, and cuts a corner off fandisk when extended; extended through pinion
-//!   and liver, and for a blade tilting across fandisk, a step breaks a fragment where the
-//!   levels disagree on the last crack's end. The MT cut checks each fragment it changed
-//!   and refuses such a step ([`CutError::MtInconsistent`]), the MT left as it was; the
-//!   CLI stops there.
+//!   stays inside, and cuts a corner off each when extended; a blade tilting back and
+//!   forth across them in 10 steps separates each. At steeper angles between steps (the
+//!   same tilt in 20 steps), and for a turning blade whose edge ends inside pinion or
+//!   liver, some steps would break a fragment where the levels disagree on the last
+//!   crack's end. The MT cut checks each fragment it changed and refuses such a step
+//!   ([`CutError::MtInconsistent`]), the MT left as it was; the CLI stops there.
 
 use super::mt_cut::{MtCutStats, MtCutter};
 use super::options::{CutError, CutOptions};

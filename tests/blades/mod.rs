@@ -45,8 +45,14 @@ pub fn shallow_path(b: &Aabb, from: (f64, f64), to: (f64, f64), steps: usize) ->
 /// step (by up to 6% of the body's y extent), so every sweep is non-planar (two triangles)
 /// and continues the last at an angle. (More lean folds a sweep over itself on pinion.)
 pub fn tilting(b: &Aabb, k: usize) -> Blade {
+    tilting_in(b, k, 10)
+}
+
+/// The blade of [`tilting`] crossing in `steps` steps, leaning as much per step: more
+/// steps meet at steeper angles (the MT cut refuses some of 20, see tests/mt_scalpel.rs).
+pub fn tilting_in(b: &Aabb, k: usize, steps: usize) -> Blade {
     let (c, d) = (b.center(), b.max - b.min);
-    let x = b.min.x - 0.05 * d.x + 1.1 * d.x * k as f64 / 10.0;
+    let x = b.min.x - 0.05 * d.x + 1.1 * d.x * k as f64 / steps as f64;
     let tilt = 0.06 * d.y * ((k as f64) * 0.9).sin();
     [
         DVec3::new(x, c.y + tilt, b.min.z - 0.1 * d.z),

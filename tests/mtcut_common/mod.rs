@@ -74,7 +74,9 @@ const TIP_REACH: f64 = 1.5 * mtcut::cut::MIN_FACE_POINT_MARGIN;
 /// the section's inner end (`CutOptions::face_point_margin`, paper §4.1: the contour is
 /// followed up to a tet's size), so a band of C along its contour, inside the tip tets, is
 /// not cut, and a later cut subdividing a tip tet can make an edge crossing C there.
-/// Farther inside C the crack is exact, and any crossing fails.
+/// Farther inside C the crack is exact, and any crossing fails, but at a vertex the crack
+/// may bend through: one within the tip reach of C's plane and contour (a crack tip of an
+/// earlier step taken onto a cut continuing it at an angle).
 pub fn crossing(
     mesh: &TetMesh,
     polygons: &[CutPolygon],
@@ -109,9 +111,16 @@ pub fn crossing(
                 }
                 // A crack tip of an earlier step that this one continues at an angle is
                 // taken onto the cut within the tip reach of C's contour, off the plane
-                // (`mt_cut`'s `TurnTips`): the crack bends through it there.
-                let reach = TIP_REACH * scale(u).max(scale(w));
-                if band <= reach && du.abs().min(dw.abs()) <= reach {
+                // (`mt_cut`'s `TurnTips`): the crack bends through it, so an edge from it
+                // may cross the plane near it (farther along an edge almost in the plane)
+                // without crossing the crack.
+                let bent = |v: usize, d: f64| {
+                    let reach = TIP_REACH * scale(v);
+                    d.abs() <= reach
+                        && polygon.inside_margin(pos[v]) <= reach
+                        && polygon.projection_distance(pos[v]) <= reach
+                };
+                if bent(u, du) || bent(w, dw) {
                     continue;
                 }
                 return Some(format!(
