@@ -26,7 +26,8 @@
 //! `geom` (predicates, planes, cutting polygons) ← `mesh` (TetMesh, tables, adjacency,
 //! validation) ← `io`, `mt` (the multiresolution model: build, extract, validate, `.mt`
 //! files), `cut` (classification, split tables, separation); [`ffi`], the C ABI, sits on top
-//! and is the only module allowed `unsafe` code. See ARCHITECTURE.md.
+//! and is the only module allowed `unsafe` code, besides the one call of the CPU's prefetch
+//! hint in `cut` (the time-critical cut's). See ARCHITECTURE.md.
 
 #![deny(unsafe_code)]
 

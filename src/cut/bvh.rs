@@ -8,20 +8,37 @@
 //! query knows how far from the plane a vertex may be and still be snapped onto the cut.
 
 use super::classify::{CrackTips, StateCache, StateClassifier, is_candidate};
+use super::prefetch::prefetch;
 use crate::geom::{Aabb, CutPolygon, DVec3, Tolerance};
 use crate::mesh::{Tet, TetId};
 
 /// Tets per leaf at build time.
 const LEAF_SIZE: usize = 4;
 
+/// How many tets ahead of the one it classifies a query asks for vertex positions: enough
+/// for the misses of several tets to overlap, few enough that the lines are still cached
+/// when their tet's turn comes.
+const PREFETCH_AHEAD: usize = 8;
+
+/// One cache line (aligned): a query run with cold caches waits for one line per node.
 #[derive(Clone, Copy, Debug)]
+#[repr(align(64))]
 struct Node {
     bbox: Aabb,
     max_scale: f64,
-    /// Leaf: range of `items`; inner node: `count == 0`, children `self + 1` and `right`.
-    first: u32,
+    /// Leaf (`count > 0`): the start of its range of `items`; inner node (`count == 0`):
+    /// its right child (the left one is `self + 1`).
+    link: u32,
     count: u32,
-    right: u32,
+}
+
+const _: () = assert!(std::mem::size_of::<Node>() == 64);
+
+impl Node {
+    /// A leaf's range of `items`.
+    fn items(&self) -> std::ops::Range<usize> {
+        self.link as usize..(self.link + self.count) as usize
+    }
 }
 
 /// The hierarchy (see the module docs).
@@ -116,15 +133,14 @@ impl TetBvh {
         self.nodes.push(Node {
             bbox,
             max_scale,
-            first: 0,
+            link: 0,
             count: 0,
-            right: 0,
         });
         if order.len() <= LEAF_SIZE {
             let first = self.items.len() as u32;
             self.items.extend(order.iter().map(|&i| TetId(i)));
             let n = &mut self.nodes[id as usize];
-            n.first = first;
+            n.link = first;
             n.count = order.len() as u32;
             return id;
         }
@@ -136,7 +152,7 @@ impl TetBvh {
         let (left, right) = order.split_at_mut(mid);
         self.build_node(boxes, left);
         let r = self.build_node(boxes, right);
-        self.nodes[id as usize].right = r;
+        self.nodes[id as usize].link = r;
         id
     }
 
@@ -151,8 +167,8 @@ impl TetBvh {
             let n = self.nodes[i];
             let bbox = if n.count > 0 {
                 let mut b = Aabb::EMPTY;
-                for k in n.first..n.first + n.count {
-                    let mut t = self.items[k as usize];
+                for k in n.items() {
+                    let mut t = self.items[k];
                     while t.is_valid() {
                         b = b.union(&tet_box(t));
                         t = self.next[t.idx()];
@@ -162,7 +178,7 @@ impl TetBvh {
             } else {
                 self.nodes[i + 1]
                     .bbox
-                    .union(&self.nodes[n.right as usize].bbox)
+                    .union(&self.nodes[n.link as usize].bbox)
             };
             self.nodes[i].bbox = bbox;
         }
@@ -268,36 +284,14 @@ impl TetBvh {
         (q.normal.dot(c) - q.offset).abs() <= q.abs_normal.dot(e) + plane_margin
     }
 
-    fn leaf(
-        &self,
-        q: &Query<'_>,
-        n: &Node,
-        out: &mut Candidates,
-        cache: &mut Option<&mut StateCache>,
-    ) {
-        for k in n.first..n.first + n.count {
-            let mut t = self.items[k as usize];
-            while t.is_valid() {
-                let tet = &q.tets[t.idx()];
-                let near = |v: crate::mesh::VertexId| {
-                    q.states.vertex(v, q.positions[v.idx()], q.scales[v.idx()])
-                };
-                let states = match cache {
-                    Some(c) => q
-                        .states
-                        .tet_with(q.positions, tet, |v| c.get(v, || near(v))),
-                    None => q.states.tet_with(q.positions, tet, near),
-                };
-                out.tested += 1;
-                if is_candidate(states) {
-                    out.tets.push(t);
-                    out.states.push(states);
-                }
-                t = self.next[t.idx()];
-            }
-        }
-    }
-
+    /// The tets of the leaves the cut may touch, in depth-first order, then their vertex
+    /// states. In passes, so that a step run with cold caches waits for few misses in turn:
+    /// each pass asks early for the lines the next one reads (see [`super::prefetch`]).
+    /// The tree is walked one level at a time, the nodes of the next level asked for while
+    /// the current one is tested (a depth-first walk would wait for every node it visits),
+    /// then the leaves' tets and chain links, the chained tets, and, while classifying,
+    /// the positions of the tets a few places ahead. Same tets, same order, same states as
+    /// classifying leaf by leaf in a depth-first walk.
     fn visit(
         &self,
         q: &Query<'_>,
@@ -305,17 +299,74 @@ impl TetBvh {
         out: &mut Candidates,
         mut cache: Option<&mut StateCache>,
     ) {
-        let mut stack = vec![node];
-        while let Some(i) = stack.pop() {
-            let n = &self.nodes[i as usize];
-            if !self.node_may_touch(q, n) {
-                continue;
+        let mut leaves: Vec<u32> = Vec::new();
+        let (mut level, mut below) = (vec![node], Vec::new());
+        while !level.is_empty() {
+            for &i in &level {
+                let n = &self.nodes[i as usize];
+                if !self.node_may_touch(q, n) {
+                    continue;
+                }
+                if n.count > 0 {
+                    prefetch(&self.items[n.link as usize]);
+                    leaves.push(i);
+                } else {
+                    prefetch(&self.nodes[i as usize + 1]);
+                    prefetch(&self.nodes[n.link as usize]);
+                    below.extend([i + 1, n.link]);
+                }
             }
-            if n.count > 0 {
-                self.leaf(q, n, out, &mut cache);
-            } else {
-                stack.push(n.right);
-                stack.push(i + 1);
+            std::mem::swap(&mut level, &mut below);
+            below.clear();
+        }
+        // Nodes are stored in depth-first preorder: by index is the depth-first order.
+        leaves.sort_unstable();
+        let mut firsts: Vec<TetId> = Vec::with_capacity(LEAF_SIZE * leaves.len());
+        for &i in &leaves {
+            let n = &self.nodes[i as usize];
+            for &t in &self.items[n.items()] {
+                prefetch(&q.tets[t.idx()]);
+                prefetch(&self.next[t.idx()]);
+                firsts.push(t);
+            }
+        }
+        let mut list: Vec<TetId> = Vec::with_capacity(2 * firsts.len());
+        for &first in &firsts {
+            let mut t = first;
+            while t.is_valid() {
+                list.push(t);
+                t = self.next[t.idx()];
+                if t.is_valid() {
+                    prefetch(&q.tets[t.idx()]);
+                }
+            }
+        }
+        let prefetch_vertices = |t: TetId| {
+            for v in &q.tets[t.idx()] {
+                prefetch(&q.positions[v.idx()]);
+            }
+        };
+        list.iter()
+            .take(PREFETCH_AHEAD)
+            .for_each(|&t| prefetch_vertices(t));
+        for (i, &t) in list.iter().enumerate() {
+            if let Some(&ahead) = list.get(i + PREFETCH_AHEAD) {
+                prefetch_vertices(ahead);
+            }
+            let tet = &q.tets[t.idx()];
+            let near = |v: crate::mesh::VertexId| {
+                q.states.vertex(v, q.positions[v.idx()], q.scales[v.idx()])
+            };
+            let states = match &mut cache {
+                Some(c) => q
+                    .states
+                    .tet_with(q.positions, tet, |v| c.get(v, || near(v))),
+                None => q.states.tet_with(q.positions, tet, near),
+            };
+            out.tested += 1;
+            if is_candidate(states) {
+                out.tets.push(t);
+                out.states.push(states);
             }
         }
     }
@@ -334,7 +385,7 @@ impl TetBvh {
         let (mut a, mut b) = (Candidates::default(), Candidates::default());
         rayon::join(
             || self.visit_parallel(q, node + 1, depth + 1, &mut a),
-            || self.visit_parallel(q, n.right, depth + 1, &mut b),
+            || self.visit_parallel(q, n.link, depth + 1, &mut b),
         );
         for part in [a, b] {
             out.tets.extend(part.tets);
