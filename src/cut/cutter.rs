@@ -476,27 +476,29 @@ impl Cutter {
             c
         };
         let split_at: Vec<usize> = (0..tets.len()).filter(|&k| classes[k].is_split()).collect();
-        let computed: Vec<Children> = if par(split_at.len()) {
+        // With room for the tets unsnapping splits again (each pass redoes a few), so that
+        // pushing them does not move every child planned so far.
+        let mut children: Vec<Children> =
+            Vec::with_capacity(split_at.len() + split_at.len() / 4 + 16);
+        if par(split_at.len()) {
             use rayon::prelude::*;
-            split_at
-                .par_iter()
-                .map(|&k| split_one(&session, k, &classes[k]))
-                .collect()
+            children.par_extend(
+                split_at
+                    .par_iter()
+                    .map(|&k| split_one(&session, k, &classes[k])),
+            );
         } else {
-            split_at
-                .iter()
-                .map(|&k| split_one(&session, k, &classes[k]))
-                .collect()
-        };
+            children.extend(
+                split_at
+                    .iter()
+                    .map(|&k| split_one(&session, k, &classes[k])),
+            );
+        }
         // children[child_of[k]] are candidate k's children (NONE: not split).
         let mut child_of = vec![NONE; tets.len()];
         for (i, &k) in split_at.iter().enumerate() {
             child_of[k] = i as u32;
         }
-        let mut children = computed;
-        // Room for the tets unsnapping splits again (each pass redoes a few), so that
-        // pushing them does not move every child planned so far.
-        children.reserve(children.len() / 4 + 16);
         times.split += t.elapsed().as_secs_f64();
 
         let mut unsnapped: Vec<VertexId> = Vec::new();

@@ -125,11 +125,14 @@ impl Attributes {
     pub fn push_copies(&mut self, src: &[u32]) {
         for c in &mut self.columns {
             let k = c.components;
-            let n = c.values.len();
-            c.values.resize(n + src.len() * k, 0.0);
-            for (j, &i) in src.iter().enumerate() {
-                let i = i as usize;
-                c.values.copy_within(i * k..(i + 1) * k, n + j * k);
+            c.values.reserve(src.len() * k);
+            // Value by value: a row is a few values, which a call to copy it (`copy_within`)
+            // would cost more than.
+            for &i in src {
+                for x in i as usize * k..(i as usize + 1) * k {
+                    let value = c.values[x];
+                    c.values.push(value);
+                }
             }
         }
     }
