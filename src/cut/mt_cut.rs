@@ -162,18 +162,21 @@
 //!   copy) as on that crack, any other by its position — so every level decides alike.
 //!   (Those taken tips lie up to the tip reach off the earlier plane, on its crack, which
 //!   bends through them: by position, coarse and fine tets around a tip decided apart.)
-//!   Measured (tests/mt_scalpel.rs and runs of other paths): an incision turning by 4°
-//!   to 30° per step through the body's depth, stopped inside and extended through each
-//!   shared mesh, keeps every level valid and cuts a corner off each, as the plain
-//!   engine does; a blade tilting back and forth across them in 10 steps separates each.
-//!   Still refused: some steps at steeper angles (the same tilt in 20 steps, on the three
-//!   meshes) and of a turning blade whose edge ends inside pinion or liver (its crack's
-//!   lower edge ends inside the body too), where a fragment's floor and ceiling disagree
-//!   near the line the cracks share. Tried and dropped: deciding the copies by the groups
-//!   tets form around each tip (joined through faces), the same over all levels — the
-//!   two cracks' fronts leave slivers between them that join the groups, so tips kept no
-//!   copy and the boundary was pinched at them; counting this cut's own points as on the
-//!   earlier plane (more steps refused). A cut of a deformed body
+//!   Measured (tests/mt_scalpel.rs; 4° and 16° in runs of other paths): an incision
+//!   turning by 8° or 30° per step through the body's depth, stopped inside and extended
+//!   through each shared mesh, keeps every level valid and cuts a corner off each, as the
+//!   plain engine does; a blade tilting back and forth across them in 10 steps separates
+//!   each; a turning blade ending inside fandisk works. Still refused: some steps at
+//!   steeper angles (the same tilt in 20 steps, on the three meshes) and of a turning
+//!   blade ending inside pinion or liver (at a tip near the corner where two steps'
+//!   cracks end, tets reaching around that end take different copies), where a
+//!   fragment's floor and ceiling disagree. Tried and dropped: deciding the copies by the
+//!   groups tets form around each tip (joined through faces), the same over all levels —
+//!   the two cracks' fronts leave slivers between them that join the groups, so tips kept
+//!   no copy and the boundary was pinched at them; counting this cut's own points as on
+//!   the earlier plane (more steps refused); a taken tip as a lip of the side its tets
+//!   keep (every 20-step tilt cut, but on fandisk the bodies' tets then held each other's
+//!   vertices on coarser levels, and the MT stayed one component). A cut of a deformed body
 //!   (`cut_deformed`) keeps no record: a step continuing one of those at an angle is
 //!   refused as before (tests/mt_live.rs). Before, every such step was refused. Such a
 //!   cut is not left in the MT: before closing, every fragment the cut changed has its
