@@ -726,7 +726,6 @@ impl MtCutter {
         // not the sides of this cut, so they are not unsnapped for having several groups
         // on a side.
         let turn = TurnTips::new(&tets, &states, &turning, &self.made, 1e-6 * self.max_scale);
-        let taken = turn.taken();
         loop {
             let mut star: Vec<StarEntry> = Vec::new();
             let mut on_cut: Vec<VertexId> = Vec::new();
@@ -1470,6 +1469,7 @@ impl MtCutter {
         stats.components = self.components;
         self.mt = Some(mt);
         if deformed.is_none() {
+            let taken = turn.taken();
             self.made.record(polygon, nv, &origins, &copies, taken);
         }
         self.last_origins = origins;
