@@ -87,10 +87,14 @@ fn build_json_has_the_documented_keys_and_agrees_with_info() {
             "error_metric",
             "valid",
             "problems",
+            "cut_vertices_from",
+            "cuts_recorded",
         ],
     );
     assert_eq!(i["kind"], "mt");
-    assert_eq!(i["file_version"], 1);
+    assert_eq!(i["file_version"], 2);
+    assert_eq!(i["cuts_recorded"], 0);
+    assert_eq!(i["cut_vertices_from"], i["vertices"]);
     assert_eq!(i["valid"], true, "{i}");
     assert_eq!(i["components"], 1);
     assert_eq!(i["vertices"], 9038);
@@ -173,7 +177,8 @@ fn info_recognises_a_model_by_its_magic_bytes() {
     assert_eq!(info_mt(&disguised)["kind"], "mt");
     let text = ok(&["info", s(&disguised)]);
     for needle in [
-        "file version 1",
+        "file version 2",
+        "cuts       none",
         "fragments",
         "DAG depth",
         "coarsest",

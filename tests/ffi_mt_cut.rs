@@ -979,3 +979,29 @@ fn a_cut_of_a_mesh_moved_into_inverted_tets_is_refused() {
     assert!(tet_count(&m) > tets_before);
     assert_valid(&m, "cut after the positions were restored");
 }
+
+/// A turning blade cut into a model one `mtcut_mt_cut` call per step: the model carries
+/// what a step continuing the last at an angle needs (its cut record), so each call, made
+/// on the model as the last one left it, continues the crack, and the corner comes off.
+#[test]
+fn a_model_cut_by_a_turning_blade_call_by_call_loses_its_corner() {
+    let input = read("liver.node");
+    let (mut lo, mut hi) = ([0.0; 3], [0.0; 3]);
+    ok(unsafe { mtcut_mesh_bounding_box(input.0, lo.as_mut_ptr(), hi.as_mut_ptr()) });
+    let mt = build(&input, None);
+    let d = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    let r = 0.6 * d[0].max(d[1]);
+    let centre = [lo[0] - 0.1 * d[0], 0.5 * (lo[1] + hi[1]) - r];
+    let at = |k: usize| {
+        let a = (98.0 - 8.0 * k as f64).to_radians();
+        (centre[0] + r * a.cos(), centre[1] + r * a.sin())
+    };
+    let (z0, z1) = (lo[2] - 0.1 * d[2], hi[2] + 0.1 * d[2]);
+    for k in 0..16 {
+        let ((x0, y0), (x1, y1)) = (at(k), at(k + 1));
+        let quad = [x0, y0, z0, x1, y1, z0, x1, y1, z1, x0, y0, z1];
+        let (status, _) = mt_cut(&mt, &quad);
+        assert_eq!(status, MTCUT_STATUS_OK, "step {k}: {}", last_error());
+    }
+    assert_eq!(mt_stats(&mt).components, 2, "the corner did not come off");
+}

@@ -1,5 +1,6 @@
-//! The `.mt` file: save → load gives the same MT; damaged files are refused with a clear
-//! error; and `validate` catches what a well-checksummed but wrong file would hide.
+//! The `.mt` file: save → load gives the same MT, cut record included; files of the first
+//! format version still load; damaged files are refused with a clear error; and
+//! `validate` catches what a well-checksummed but wrong file would hide.
 
 mod mt_common;
 
@@ -185,4 +186,62 @@ fn attributes_survive_the_file() {
     assert!(back == mt);
     assert_eq!(back.point_data().get("velocity").unwrap().components, 3);
     assert!(back.validate().is_valid());
+}
+
+/// Bytes at the end of the payload that hold the cut record of an MT no cut changed and no
+/// cutter prepared: the first vertex made by a cut (u32), no cuts (u64), no scales (u64).
+const EMPTY_RECORD: usize = 4 + 8 + 8;
+
+/// A file written before cuts were recorded (format version 1: the same payload without the
+/// cut record) loads as the MT it holds, with no vertex made by a cut.
+#[test]
+fn a_version_1_file_still_loads() {
+    let (_, mt, _) = built("pinion");
+    let mut bytes = mt.to_bytes();
+    bytes.truncate(bytes.len() - EMPTY_RECORD);
+    bytes[8..12].copy_from_slice(&1u32.to_le_bytes());
+    let len = (bytes.len() - HEADER) as u64;
+    bytes[16..24].copy_from_slice(&len.to_le_bytes());
+    reseal(&mut bytes);
+    let back = Mt::from_bytes(&bytes).unwrap();
+    assert!(back == *mt, "the version 1 file loads another MT");
+    assert_eq!(back.info().cuts.cut_vertices_from(), back.nb_vertices());
+}
+
+/// A cut model keeps, through the file, what later cuts read (its cut record: the vertices
+/// cuts made, the last cuts' polygons and vertex kinds, the vertex scales): the loaded MT
+/// equals the saved one, record included. A record that does not fit the pool is refused.
+#[test]
+fn a_cut_model_keeps_its_cut_record() {
+    let (_, mt, _) = built("fandisk");
+    let b = mtcut::geom::Aabb::from_points(mt.positions());
+    let (c, d) = (b.center(), b.max - b.min);
+    let mut cutter =
+        mtcut::cut::MtCutter::new(mt.clone(), mtcut::cut::MtCutter::DEFAULT_OPTIONS).unwrap();
+    let p = |x: f64, z: f64| mtcut::geom::DVec3::new(x, c.y + 0.05 * (x - c.x), z);
+    let (z0, z1) = (b.min.z - 0.1 * d.z, b.max.z + 0.1 * d.z);
+    let (x0, x1) = (b.min.x - 0.1 * d.x, c.x);
+    let square = mtcut::geom::CutPolygon::new(&[p(x0, z0), p(x1, z0), p(x1, z1), p(x0, z1)]);
+    cutter.cut(&square.unwrap()).unwrap();
+    let cut = cutter.into_mt();
+    let record = &cut.info().cuts;
+    assert_eq!(record.cut_vertices_from(), mt.nb_vertices());
+    assert!(cut.nb_vertices() > mt.nb_vertices());
+    assert_eq!(record.cuts_kept(), 1);
+    assert_eq!(record.vertex_scales().len(), cut.nb_vertices());
+    let bytes = cut.to_bytes();
+    let back = Mt::from_bytes(&bytes).unwrap();
+    assert!(back == cut, "the loaded MT differs from the saved one");
+    assert!(back.validate().is_valid());
+
+    // The first vertex made by a cut, beyond the pool: refused, naming the record.
+    let (_, uncut, _) = built("pinion");
+    let mut beyond = uncut.to_bytes();
+    let at = beyond.len() - EMPTY_RECORD;
+    let nv = uncut.nb_vertices() as u32;
+    beyond[at..at + 4].copy_from_slice(&(nv + 5).to_le_bytes());
+    reseal(&mut beyond);
+    let e = Mt::from_bytes(&beyond).unwrap_err();
+    assert!(matches!(e, MtFileErrorKind::Corrupt(_)), "{e}");
+    assert!(e.to_string().contains("cut record"), "{e}");
 }

@@ -113,6 +113,49 @@ fn turning_incision(name: &'static str, extend: bool) -> Run {
     run
 }
 
+/// The turning incision of `a_turning_incision_stopped_inside_then_extended`, each step
+/// cut by a new cutter made of the MT as saved after the step before (`.mt` bytes, loaded
+/// again): the MT carries what a step continuing the last at an angle needs (its cut
+/// record), so every step is taken and the MT is, step by step, the one a single cutter
+/// makes (canonical forms compared), the same bytes when saved, and valid.
+#[test]
+fn a_scalpel_resumed_from_saved_models_cuts_as_one_cutter() {
+    for name in mt_common::MESHES {
+        let mt = mt_common::built(name).1.clone();
+        let b = Aabb::from_points(mt.positions());
+        let mut one = MtCutter::new(mt.clone(), MtCutter::DEFAULT_OPTIONS).expect("options");
+        let mut saved = mt.to_bytes();
+        let path: Vec<Blade> = (0..16).map(|k| on_arc(&b, -8.0 + 8.0 * k as f64)).collect();
+        for (k, w) in path.windows(2).enumerate() {
+            for polygon in scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).expect("sweep") {
+                let loaded = mtcut::mt::Mt::from_bytes(&saved).expect("load");
+                let mut fresh = MtCutter::new(loaded, MtCutter::DEFAULT_OPTIONS).expect("options");
+                fresh
+                    .cut(&polygon)
+                    .unwrap_or_else(|e| panic!("{name} step {k}: resumed from saved: {e}"));
+                one.cut(&polygon)
+                    .unwrap_or_else(|e| panic!("{name} step {k}: one cutter: {e}"));
+                assert!(
+                    fresh.mt().canonical_form() == one.mt().canonical_form(),
+                    "{name} step {k}: the resumed cut differs from the single cutter's"
+                );
+                saved = fresh.mt().to_bytes();
+                assert!(
+                    saved == one.mt().to_bytes(),
+                    "{name} step {k}: the resumed MT saves to other bytes"
+                );
+            }
+        }
+        let report = one.mt().validate();
+        assert!(report.is_valid(), "{name}: {report:?}");
+        assert_eq!(
+            one.mt().nb_components(),
+            2,
+            "{name}: the incision did not separate"
+        );
+    }
+}
+
 /// A blade turning by 30° per step (five steps of a sixth of a turn around a centre off
 /// the body) cuts a corner off each shared mesh.
 #[test]

@@ -573,8 +573,9 @@ impl LiveMt {
 /// The cutter of a current mesh extracted from `mt`'s MT (MT vertices `ids`): with the MT's
 /// options and vertex scales, so it decides as the MT cut decides on those tets.
 fn current_cutter(mt: &MtCutter, mesh: TetMesh, ids: &[VertexId]) -> Result<Cutter, CutError> {
-    let scales = ids.iter().map(|v| mt.vertex_scales()[v.idx()]).collect();
-    let crack = ids.iter().map(|v| mt.crack_vertices()[v.idx()]).collect();
+    let (all_scales, all_crack) = (mt.vertex_scales(), mt.crack_vertices());
+    let scales = ids.iter().map(|v| all_scales[v.idx()]).collect();
+    let crack = ids.iter().map(|v| all_crack[v.idx()]).collect();
     // Components are the MT's business (`Mt::nb_components`): counting them on every
     // frontier-first cut would cost a pass over the current mesh.
     let options = mt.options().with_count_components(false);

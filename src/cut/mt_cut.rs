@@ -152,7 +152,8 @@
 //!   triangles) begins on the line where the last crack ended, and that crack's tips on
 //!   the line lie on both planes. Around such a tip the two cracks together, not the new
 //!   plane, divide the tets: into the convex wedge between them and the rest. When a cut's
-//!   polygon shares an edge with one of the last cuts at rest (`Made`) at an angle, the
+//!   polygon shares an edge with one of the last cuts at rest at an angle (`Made`, kept
+//!   in the MT's cut record: a cutter made of an MT saved and loaded reads it too), the
 //!   tips that cut made within the tip reach of the new polygon
 //!   ([`StateClassifier::with_crack_tips`], as the plain engine takes them) are on this
 //!   cut, each gets one copy, and every tet holding it takes the copy or not by whether
@@ -202,6 +203,7 @@ use crate::geom::{Aabb, CutPolygon, DVec3, Sign};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::{TET_EDGES, TET_FACES, flip_face, oriented_face};
 use crate::mesh::{FragmentId, Tet, TetId, VertexId};
+use crate::mt::history::{Made, MadeBy};
 use crate::mt::{FragmentBvh, FragmentKind, GHOST, KnownDag, Mt, OpenMt, TetLinks};
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
@@ -300,7 +302,8 @@ impl MtCutStats {
 pub struct MtCutter {
     /// Always `Some` between calls (taken while a cut commits).
     mt: Option<Mt>,
-    /// Longest incident edge of each vertex in the finest mesh (see the module docs).
+    /// Longest incident edge of each vertex in the finest mesh (see the module docs): the
+    /// MT's (its `CutHistory`'s), held here while a cut runs, empty between cuts.
     scales: Vec<f64>,
     max_scale: f64,
     bounds: Aabb,
@@ -332,8 +335,6 @@ pub struct MtCutter {
     components: usize,
     /// Per vertex: whether it lies on a crack ([`MtCutter::crack_vertices`]).
     crack: Vec<bool>,
-    /// What this cutter's cuts at rest made (see `Made`).
-    made: Made,
 }
 
 /// Largest `snap` an MT cut accepts (see the module docs, "Limits").
@@ -405,21 +406,16 @@ impl MtCutter {
                 expected: "the look-up tables (the 1:17 scheme is not conforming)",
             });
         }
-        let mut scales = vec![0.0f64; mt.nb_vertices()];
-        let finest = mt
-            .roots()
-            .iter()
-            .flat_map(|&r| mt.created_tets(r))
-            .map(|t| mt.tet(t))
-            .filter(|t| t[3] != GHOST);
-        for t in finest {
-            for [a, b] in TET_EDGES {
-                let (u, v) = (t[a].idx(), t[b].idx());
-                let l = mt.positions()[u].distance(mt.positions()[v]);
-                scales[u] = scales[u].max(l);
-                scales[v] = scales[v].max(l);
-            }
-        }
+        let mut mt = mt;
+        // Scales a cut recorded in the MT (see `CutHistory`): what the cutter that made the
+        // cuts measured by; derived again they would differ near the cracks (their edges
+        // are split), and a cut would decide otherwise.
+        let recorded = std::mem::take(&mut mt.cut_history_mut().scales);
+        let scales = if recorded.len() == mt.nb_vertices() {
+            recorded
+        } else {
+            finest_edge_scales(&mt)
+        };
         let max_scale = scales.iter().copied().fold(0.0, f64::max);
         let bounds = Aabb::from_points(mt.positions());
         let cracked = cracked_fragments(&mt);
@@ -430,13 +426,15 @@ impl MtCutter {
         // What the first cut would pay for in proportion to the pool, paid here: the
         // per-tet links of the open form, and room to append to the pool.
         let links = Some(mt.tet_links());
-        let crack = shared_positions(mt.positions());
+        let mut crack = shared_positions(mt.positions());
+        let from = mt.info().cuts.cut_vertices_from().min(crack.len());
+        crack[from..].fill(true);
         let components = mt.nb_components();
-        let mut mt = mt;
         mt.reserve_edit_room();
+        mt.cut_history_mut().scales = scales;
         Ok(MtCutter {
             mt: Some(mt),
-            scales,
+            scales: Vec::new(),
             max_scale,
             bounds,
             scratch: CutScratch::new(),
@@ -449,7 +447,6 @@ impl MtCutter {
             links,
             components,
             crack,
-            made: Made::default(),
         })
     }
 
@@ -459,12 +456,14 @@ impl MtCutter {
             .expect("MtCutter holds its MT between cuts")
     }
 
-    /// Per MT vertex: whether it lies on a crack — made by a cut of this cutter (cut
-    /// points, face points, copies and the vertices copied), or, in the MT it was made
-    /// with, sharing its position with another vertex (the lips of cracks made before the
-    /// MT was saved; their face points are not recognised). A cut in the plane of an
-    /// earlier crack takes these as neither side when they lie on its plane outside its
-    /// polygon ([`StateClassifier::with_crack_vertices`]).
+    /// Per MT vertex: whether it lies on a crack — appended by a cut (cut points, face
+    /// points, copies: every vertex from the MT's
+    /// [`CutHistory::cut_vertices_from`](crate::mt::CutHistory::cut_vertices_from) on),
+    /// or sharing its position with another vertex (a copied vertex, and the lips of
+    /// cracks in an MT saved before cuts were recorded, whose face points are then not
+    /// recognised). A cut in the plane of an earlier crack takes these as neither side
+    /// when they lie on its plane outside its polygon
+    /// ([`StateClassifier::with_crack_vertices`]).
     pub fn crack_vertices(&self) -> &[bool] {
         &self.crack
     }
@@ -477,10 +476,11 @@ impl MtCutter {
         &self.options
     }
 
-    /// The scale of each vertex (longest incident edge in the finest mesh; vertices made by
-    /// cuts take the largest scale of the vertices they are made of).
+    /// The scale of each vertex (longest incident edge in the finest mesh when the MT was
+    /// first prepared for cutting; vertices made by cuts take the largest scale of the
+    /// vertices they are made of). Kept in the MT's cut record.
     pub fn vertex_scales(&self) -> &[f64] {
-        &self.scales
+        &self.mt().info().cuts.scales
     }
 
     /// The vertices the last cut appended to the pool, in order from the pool's vertex
@@ -534,6 +534,34 @@ impl MtCutter {
         key: Option<&dyn Fn(FragmentId) -> u64>,
         deformed: Option<&[DVec3]>,
     ) -> Result<MtCutStats, CutError> {
+        // The vertex scales and the record of the last cuts travel with the MT (saved with
+        // it, read by any cutter made of it): taken out while the MT is open, given back
+        // whatever happens (a refused cut leaves them as they were).
+        let history = self.mt_mut().cut_history_mut();
+        let mut made = std::mem::take(&mut history.made);
+        self.scales = std::mem::take(&mut history.scales);
+        let result = self.cut_recording(polygon, key, deformed, &mut made);
+        let scales = std::mem::take(&mut self.scales);
+        let history = self.mt_mut().cut_history_mut();
+        history.made = made;
+        history.scales = scales;
+        result
+    }
+
+    fn mt_mut(&mut self) -> &mut Mt {
+        self.mt
+            .as_mut()
+            .expect("MtCutter holds its MT between cuts")
+    }
+
+    /// [`cut_with`](Self::cut_with), reading and adding to the record `made`.
+    fn cut_recording(
+        &mut self,
+        polygon: &CutPolygon,
+        key: Option<&dyn Fn(FragmentId) -> u64>,
+        deformed: Option<&[DVec3]>,
+        made: &mut Made,
+    ) -> Result<MtCutStats, CutError> {
         let start = Instant::now();
         let opts = self.options;
         let mut stats = MtCutStats::default();
@@ -557,11 +585,11 @@ impl MtCutter {
         // near the edge they share are on this cut.
         let turning: Vec<Turning> = match deformed {
             Some(_) => Vec::new(),
-            None => self.made.turning(polygon, self.max_scale),
+            None => made.turning(polygon, self.max_scale),
         };
         let mut turning_tips = CrackTips::default();
         for t in &turning {
-            self.made.tips(t.cut).for_each(|v| turning_tips.insert(v));
+            made.tips(t.cut).for_each(|v| turning_tips.insert(v));
         }
         let mut classifier = StateClassifier::new(polygon, opts.snap, &bounds, self.max_scale)
             .with_contour_band(contour_band(&opts))
@@ -725,7 +753,7 @@ impl MtCutter {
         // (see `TurnTips`): their two groups are the two sides of both cracks together,
         // not the sides of this cut, so they are not unsnapped for having several groups
         // on a side.
-        let turn = TurnTips::new(&tets, &states, &turning, &self.made, 1e-6 * self.max_scale);
+        let turn = TurnTips::new(&tets, &states, &turning, made, 1e-6 * self.max_scale);
         loop {
             let mut star: Vec<StarEntry> = Vec::new();
             let mut on_cut: Vec<VertexId> = Vec::new();
@@ -1470,7 +1498,7 @@ impl MtCutter {
         self.mt = Some(mt);
         if deformed.is_none() {
             let taken = turn.taken();
-            self.made.record(polygon, nv, &origins, &copies, taken);
+            made.record(polygon, nv, &origins, &copies, taken);
         }
         self.last_origins = origins;
         self.last_origins
@@ -1599,24 +1627,7 @@ const LIP_POSITIVE: u8 = 1;
 const LIP_NEGATIVE: u8 = 2;
 /// A turning tip's copy: where two cracks meet, on no lip.
 const JUNCTION: u8 = 3;
-
-/// What the cuts at rest of a cutter made, per cut: its polygon and the kind of each
-/// vertex it appended (a byte per vertex) — what a later cut that continues one at an
-/// angle reads (`TurnTips`). Cuts of a deformed body (their polygons lie in another frame)
-/// are not kept: a cut continuing one of those at an angle is refused as before.
-#[derive(Default)]
-struct Made {
-    cuts: Vec<MadeBy>,
-}
-
-struct MadeBy {
-    polygon: CutPolygon,
-    /// The first vertex the cut appended, and the kind of each.
-    first: u32,
-    kinds: Vec<u8>,
-    /// The turning tips of earlier cuts the cut took onto its crack, sorted.
-    taken: Vec<VertexId>,
-}
+const _: () = assert!(JUNCTION < crate::mt::history::KINDS);
 
 impl MadeBy {
     fn took(&self, v: VertexId) -> bool {
@@ -1625,9 +1636,6 @@ impl MadeBy {
 }
 
 impl Made {
-    /// How many of the last cuts a cut is checked against for continuing one at an angle.
-    const RECENT: usize = 8;
-
     /// Keeps what a cut by `polygon` appended from vertex `first`: `origins`, then a copy
     /// of each of `copies`; `taken`: the turning tips it took (sorted).
     fn record(
@@ -1663,6 +1671,9 @@ impl Made {
             kinds,
             taken,
         });
+        if self.cuts.len() > Made::RECENT {
+            self.cuts.remove(0);
+        }
     }
 
     /// The cut that appended `v` (an index in `cuts`) and its kind, if a kept cut did.
@@ -1677,12 +1688,10 @@ impl Made {
             .map(|&k| (i as u32, k))
     }
 
-    /// The kept cuts whose polygon `polygon` continues at an angle (`turns_from`), among
-    /// the last [`Made::RECENT`]: a blade's step continues the step before it (a tilting
-    /// blade's second triangle, the first), so older cuts are not searched on every cut.
+    /// The kept cuts (the last [`Made::RECENT`]) whose polygon `polygon` continues at an
+    /// angle (`turns_from`).
     fn turning(&self, polygon: &CutPolygon, scale: f64) -> Vec<Turning> {
-        let from = self.cuts.len().saturating_sub(Made::RECENT) as u32;
-        (from..self.cuts.len() as u32)
+        (0..self.cuts.len() as u32)
             .filter_map(|cut| {
                 let (s_old, s_new) = turns_from(&self.cuts[cut as usize].polygon, polygon, scale)?;
                 Some(Turning { cut, s_old, s_new })
@@ -2485,6 +2494,26 @@ fn split_fragment(tets: &[Tet], positions: &[DVec3], floor: &[u32], ceiling: &[u
 }
 
 /// Per vertex: whether another vertex has the same position (bit for bit).
+/// The longest edge at each vertex in the finest mesh (see the module docs).
+fn finest_edge_scales(mt: &Mt) -> Vec<f64> {
+    let mut scales = vec![0.0f64; mt.nb_vertices()];
+    let finest = mt
+        .roots()
+        .iter()
+        .flat_map(|&r| mt.created_tets(r))
+        .map(|t| mt.tet(t))
+        .filter(|t| t[3] != GHOST);
+    for t in finest {
+        for [a, b] in TET_EDGES {
+            let (u, v) = (t[a].idx(), t[b].idx());
+            let l = mt.positions()[u].distance(mt.positions()[v]);
+            scales[u] = scales[u].max(l);
+            scales[v] = scales[v].max(l);
+        }
+    }
+    scales
+}
+
 fn shared_positions(positions: &[DVec3]) -> Vec<bool> {
     let mut order: Vec<u32> = (0..positions.len() as u32).collect();
     let key = |i: u32| positions[i as usize].to_array().map(f64::to_bits);

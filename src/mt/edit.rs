@@ -270,7 +270,10 @@ impl Mt {
             destroyer: Vec::with_capacity(keep_t.len()),
             kind: keep_f.iter().map(|&f| self.kind[f]).collect(),
             error: keep_f.iter().map(|&f| self.error[f]).collect(),
-            info: self.info.clone(),
+            info: MtInfo {
+                cuts: self.info.cuts.renumbered(&new_v),
+                ..self.info.clone()
+            },
             opened_sorted: 0,
             relabelled: Vec::new(),
             changed_fragments: None,

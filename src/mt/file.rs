@@ -3,7 +3,7 @@
 //! ```text
 //! offset  size  field
 //!      0     8  magic "MTCUTMT\0"
-//!      8     4  format version (u32), currently 1
+//!      8     4  format version (u32), currently 2 (version 1 is read too)
 //!     12     4  flags (u32), 0 (reserved)
 //!     16     8  payload length in bytes (u64)
 //!     24     4  CRC-32 (IEEE 802.3) of the payload (u32)
@@ -17,7 +17,13 @@
 //! (3 f64 each); tets (4 u32 each, ghost vertex `u32::MAX - 1`); arc starts (arcs + 1 u32),
 //! arc creators, arc destroyers (u32 each); fragment kinds (u8 each: 0 root, 1 collapse,
 //! 2 drain) and errors (f64 each); point data then cell data, each a u32 column count then
-//! per column its name, its component count (u32) and its values (u64 count, f64 each).
+//! per column its name, its component count (u32) and its values (u64 count, f64 each);
+//! then (version 2) the cut record ([`CutHistory`]): the first vertex appended by a cut
+//! (u32), the number of cuts kept (u64), and per cut its polygon (u64 point count, 3 f64
+//! each), first appended vertex (u32), kinds of its appended vertices (u64 count, a u8
+//! each) and the tips it took (u64 count, u32 each), then the vertex scales (u64 count,
+//! 0 or the vertex count, f64 each). A version 1 file (written before cuts
+//! were recorded) loads with an empty record: every vertex as built, none made by a cut.
 //!
 //! Only primary data is stored; levels, boxes and arc lists are derived on loading by the
 //! same code that assembles a freshly built MT, which also checks every index, so a file
@@ -29,16 +35,17 @@
 //! probability 1 − 2⁻³², which is what a file format needs against truncated copies and
 //! flipped bits; it is not a defence against deliberate tampering.
 
+use super::history::{CutHistory, Made, MadeBy};
 use super::{FragmentKind, MAX_ELEMENTS, Mt, MtInfo, MtParts};
-use crate::geom::DVec3;
+use crate::geom::{CutPolygon, DVec3};
 use crate::mesh::{Attribute, Attributes, FragmentId, Tet, VertexId};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// First bytes of every `.mt` file.
 pub const MT_MAGIC: [u8; 8] = *b"MTCUTMT\0";
-/// The format version this library writes and reads.
-pub const MT_FILE_VERSION: u32 = 1;
+/// The format version this library writes; it reads this one and every earlier one.
+pub const MT_FILE_VERSION: u32 = 2;
 const HEADER: usize = 32;
 
 /// What is wrong with an `.mt` file.
@@ -48,7 +55,9 @@ pub enum MtFileErrorKind {
     Os(#[from] std::io::Error),
     #[error("not an mtcut model (wrong magic bytes {found:02x?})")]
     WrongMagic { found: Vec<u8> },
-    #[error("format version {found} is not supported (this library reads version {supported})")]
+    #[error(
+        "format version {found} is not supported (this library reads versions 1 to {supported})"
+    )]
     UnsupportedVersion { found: u32, supported: u32 },
     #[error("truncated: {expected} bytes expected, {found} present")]
     Truncated { expected: u64, found: u64 },
@@ -152,6 +161,28 @@ impl Mt {
                 }
             }
         }
+        let cuts = &self.info.cuts;
+        w.u32(cuts.cut_vertices_from);
+        w.u64(cuts.made.cuts.len() as u64);
+        for c in &cuts.made.cuts {
+            w.u64(c.polygon.points().len() as u64);
+            for p in c.polygon.points() {
+                for x in p.to_array() {
+                    w.f64(x);
+                }
+            }
+            w.u32(c.first);
+            w.u64(c.kinds.len() as u64);
+            w.0.extend_from_slice(&c.kinds);
+            w.u64(c.taken.len() as u64);
+            for v in &c.taken {
+                w.u32(v.0);
+            }
+        }
+        w.u64(cuts.scales.len() as u64);
+        for &x in &cuts.scales {
+            w.f64(x);
+        }
         let payload = w.0;
         let mut crc = flate2::Crc::new();
         crc.update(&payload);
@@ -189,7 +220,7 @@ impl Mt {
             u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]])
         };
         let version = word(8);
-        if version != MT_FILE_VERSION {
+        if !(1..=MT_FILE_VERSION).contains(&version) {
             return Err(MtFileErrorKind::UnsupportedVersion {
                 found: version,
                 supported: MT_FILE_VERSION,
@@ -222,7 +253,7 @@ impl Mt {
                 "reserved header fields are not zero".into(),
             ));
         }
-        parse(payload).map_err(MtFileErrorKind::Corrupt)
+        parse(payload, version).map_err(MtFileErrorKind::Corrupt)
     }
 }
 
@@ -310,6 +341,45 @@ impl<'a> Reader<'a> {
             })
             .collect())
     }
+    /// The cut record; its indices are checked with the rest by [`Mt::assemble`].
+    fn cut_history(&mut self) -> Result<CutHistory, String> {
+        let cut_vertices_from = self.u32("first vertex made by a cut")?;
+        let n = self.count("cuts recorded", 40)?;
+        let mut cuts = Vec::with_capacity(n.min(Made::RECENT));
+        for i in 0..n {
+            let np = self.count(&format!("cut {i}'s polygon point count"), 24)?;
+            let coords = self.f64s(np * 3, &format!("cut {i}'s polygon"))?;
+            let points: Vec<DVec3> = coords
+                .chunks_exact(3)
+                .map(|c| DVec3::new(c[0], c[1], c[2]))
+                .collect();
+            let polygon = CutPolygon::new(&points)
+                .map_err(|e| format!("cut record: cut {i}'s polygon: {e}"))?;
+            let first = self.u32(&format!("cut {i}'s first vertex"))?;
+            let nk = self.count(&format!("cut {i}'s vertex count"), 1)?;
+            let kinds = self.take(nk, &format!("cut {i}'s vertex kinds"))?.to_vec();
+            let nt = self.count(&format!("cut {i}'s taken tip count"), 4)?;
+            let taken = self
+                .u32s(nt, &format!("cut {i}'s taken tips"))?
+                .into_iter()
+                .map(VertexId)
+                .collect();
+            cuts.push(MadeBy {
+                polygon,
+                first,
+                kinds,
+                taken,
+            });
+        }
+        let ns = self.count("vertex scale count", 8)?;
+        let scales = self.f64s(ns, "vertex scales")?;
+        Ok(CutHistory {
+            cut_vertices_from,
+            made: Made { cuts },
+            scales,
+        })
+    }
+
     fn attributes(&mut self, what: &str) -> Result<Attributes, String> {
         let n = self.u32(what)?;
         let mut out = Attributes::new();
@@ -327,17 +397,19 @@ impl<'a> Reader<'a> {
     }
 }
 
-fn parse(payload: &[u8]) -> Result<Mt, String> {
+/// The payload of a file of format `version`.
+fn parse(payload: &[u8], version: u32) -> Result<Mt, String> {
     let mut r = Reader {
         data: payload,
         at: 0,
     };
-    let info = MtInfo {
+    let mut info = MtInfo {
         error_metric: r.string("error metric name")?,
         boundary_tolerance: r.f64("boundary tolerance")?,
         preserve_features: r.u8("preserve-features flag")? != 0,
         feature_angle_degrees: r.f64("feature angle")?,
         input_tets: r.u64("input tet count")? as usize,
+        cuts: CutHistory::new(0),
     };
     let nv = r.count("vertex count", 24)?;
     let nt = r.count("tet count", 16)?;
@@ -385,10 +457,19 @@ fn parse(payload: &[u8]) -> Result<Mt, String> {
     let error = r.f64s(nf, "fragment errors")?;
     let point_data = r.attributes("point data")?;
     let cell_data = r.attributes("cell data")?;
+    info.cuts = match version {
+        1 => CutHistory::new(nv),
+        _ => r.cut_history()?,
+    };
     if r.at != payload.len() {
         return Err(format!(
-            "{} bytes left over after the cell data",
-            payload.len() - r.at
+            "{} bytes left over after the {}",
+            payload.len() - r.at,
+            if version == 1 {
+                "cell data"
+            } else {
+                "cut record"
+            }
         ));
     }
     Mt::assemble(MtParts {

@@ -64,6 +64,7 @@ pub mod error;
 pub mod extract;
 pub mod file;
 pub mod frontier;
+pub mod history;
 pub mod validate;
 
 pub use build::{BuildError, BuildOptions, BuildPhase, BuildProgress, BuildStats, Rejections};
@@ -78,6 +79,7 @@ pub use extract::{
 };
 pub use file::{MT_FILE_VERSION, MT_MAGIC, MtFileError, MtFileErrorKind};
 pub use frontier::{Frontier, FrontierUpdate};
+pub use history::CutHistory;
 pub use validate::{MtValidationReport, MtViolation, MtViolationKind};
 
 use crate::geom::{Aabb, DVec3};
@@ -139,6 +141,8 @@ pub struct MtInfo {
     pub feature_angle_degrees: f64,
     /// Tets of the input mesh.
     pub input_tets: usize,
+    /// What the cuts made so far leave for later cuts (see [`CutHistory`]).
+    pub cuts: CutHistory,
 }
 
 /// The primary data of an MT, from which [`Mt::assemble`] derives the rest.
@@ -279,6 +283,7 @@ impl Mt {
                 return Err(format!("arc {a} goes from fragment {c} to itself"));
             }
         }
+        p.info.cuts.check(nv)?;
         if let Some((t, v)) = first_bad_vertex(&p.tets, nv) {
             return Err(format!("tet {t} uses vertex {v}, but the pool has {nv}"));
         }
@@ -666,6 +671,7 @@ impl Mt {
             + self.kind.capacity() * size_of::<FragmentKind>()
             + self.error.capacity() * 8
             + self.info.error_metric.capacity()
+            + self.info.cuts.heap_bytes()
             + self.level.capacity() * 4
             + self.bbox.capacity() * size_of::<QuantBox>()
             + self.out_start.capacity() * 4
@@ -934,6 +940,8 @@ impl MtSummary {
             "boundary_tolerance": self.info.boundary_tolerance,
             "preserve_features": self.info.preserve_features,
             "feature_angle_degrees": self.info.feature_angle_degrees,
+            "cut_vertices_from": self.info.cuts.cut_vertices_from(),
+            "cuts_recorded": self.info.cuts.cuts_kept(),
         })
     }
 }

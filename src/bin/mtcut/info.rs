@@ -141,17 +141,26 @@ pub fn is_model(path: &Path) -> bool {
     }
 }
 
+/// The format version in the header of the model file at `path` (one `Mt::load` read).
+fn file_version(path: &Path) -> std::io::Result<u32> {
+    let mut head = [0u8; 12];
+    std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut head))?;
+    Ok(u32::from_le_bytes([head[8], head[9], head[10], head[11]]))
+}
+
 /// Everything `info` reports about a model.
 struct ModelInfo {
     summary: MtSummary,
+    file_version: u32,
     problems: Vec<String>,
 }
 
 impl ModelInfo {
-    fn of(mt: &Mt) -> ModelInfo {
+    fn of(mt: &Mt, file_version: u32) -> ModelInfo {
         let validation = mt.validate();
         ModelInfo {
             summary: mt.summary(),
+            file_version,
             problems: validation
                 .violations
                 .iter()
@@ -164,7 +173,7 @@ impl ModelInfo {
         let mut j = self.summary.to_json();
         if let Some(o) = j.as_object_mut() {
             o.insert("kind".into(), json!("mt"));
-            o.insert("file_version".into(), json!(MT_FILE_VERSION));
+            o.insert("file_version".into(), json!(self.file_version));
             o.insert("valid".into(), json!(self.problems.is_empty()));
             o.insert("problems".into(), json!(self.problems));
         }
@@ -175,7 +184,15 @@ impl ModelInfo {
         let s = &self.summary;
         let i = &s.info;
         let (lo, hi) = (s.bbox.min, s.bbox.max);
-        out!("format     mtcut model, file version {MT_FILE_VERSION}");
+        out!(
+            "format     mtcut model, file version {}{}",
+            self.file_version,
+            if self.file_version < MT_FILE_VERSION {
+                format!(" (written before version {MT_FILE_VERSION}: no cut record)")
+            } else {
+                String::new()
+            }
+        );
         out!("vertices   {}", s.vertices);
         out!(
             "tets       {} over all levels (plus {} ghost tets), {} arcs",
@@ -212,6 +229,17 @@ impl ModelInfo {
             i.feature_angle_degrees
         );
         out!("bbox       {}", bbox_text(lo, hi));
+        let cuts = &i.cuts;
+        if cuts.cut_vertices_from() < s.vertices {
+            out!(
+                "cuts       vertices {}.. made by cuts; the last {} at rest recorded (a cut \
+                 continuing one at an angle reads them)",
+                cuts.cut_vertices_from(),
+                cuts.cuts_kept()
+            );
+        } else {
+            out!("cuts       none");
+        }
         out!(
             "memory     {} bytes ({:.1} per input tet)",
             s.heap_bytes,
@@ -239,7 +267,7 @@ fn run_model(args: &Args) -> CliResult {
             return Err(e.into());
         }
     };
-    let info = ModelInfo::of(&mt);
+    let info = ModelInfo::of(&mt, file_version(&args.mesh)?);
     if args.json {
         out!("{}", info.to_json());
     } else {

@@ -39,7 +39,7 @@ mod surface;
 pub use collapse::Rejections;
 
 use super::error::{BoundaryError, ErrorMetric, QualityError, TetError, VolumeError};
-use super::{FragmentKind, MAX_ELEMENTS, Mt, MtInfo, MtParts};
+use super::{CutHistory, FragmentKind, MAX_ELEMENTS, Mt, MtInfo, MtParts};
 use crate::geom::{DVec3, Tolerance};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::TET_FACES;
@@ -367,6 +367,7 @@ fn run<E: TetError + ?Sized>(
         preserve_features: options.preserve_features,
         feature_angle_degrees: options.feature_angle_degrees,
         input_tets: mesh.nb_tets(),
+        cuts: CutHistory::new(mesh.nb_vertices()),
     };
     let mt = freeze(sim, &renumbering, mesh, info)?;
     let summary = mt.summary();
