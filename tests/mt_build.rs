@@ -515,3 +515,44 @@ fn a_single_tet_is_its_own_coarsest_mesh() {
         1
     );
 }
+
+/// Closing an opened MT checks every tet's vertex ids: all of them when the editor says
+/// nothing, else the tets it listed as written and those it appended (the others were
+/// checked when the MT was assembled). A vertex beyond the pool is an error naming the
+/// tet, never a panic later.
+#[test]
+fn closing_an_edit_checks_the_vertex_ids_it_wrote() {
+    let (_, mt, _) = built("pinion");
+    let nv = mt.nb_vertices() as u32;
+    let beyond = mtcut::mesh::VertexId(nv + 3);
+    // Unlisted: the whole pool is checked.
+    let mut open = mt.clone().open();
+    open.tets[10][0] = beyond;
+    let e = open.close().unwrap_err();
+    assert!(
+        e.contains("tet") && e.contains(&format!("{}", nv + 3)),
+        "{e}"
+    );
+    // Listed as written.
+    let mut open = mt.clone().open();
+    open.tets[10][1] = beyond;
+    open.written_tets = Some(vec![3, 10]);
+    let e = open.close().unwrap_err();
+    assert!(e.contains("tet 10"), "{e}");
+    // Appended (a copy of tet 0, with the same creator and destroyer, one vertex beyond).
+    let mut open = mt.clone().open();
+    let mut t = open.tets[0];
+    t[2] = beyond;
+    let (c, d) = (open.creator[0], open.destroyer[0]);
+    open.tets.push(t);
+    open.creator.push(c);
+    open.destroyer.push(d);
+    open.cell_data.push_copies(&[0]);
+    open.written_tets = Some(Vec::new());
+    let e = open.close().unwrap_err();
+    assert!(e.contains(&format!("{}", nv + 3)), "{e}");
+    // Nothing wrong: the same MT back.
+    let mut open = mt.clone().open();
+    open.written_tets = Some(vec![10]);
+    assert!(open.close().unwrap() == *mt);
+}

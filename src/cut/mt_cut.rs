@@ -1480,6 +1480,9 @@ impl MtCutter {
         // sub-triangles; crack ghosts lie inside): only a fragment that gave tets to the
         // fragments split off it has a new box (and those, added, get theirs).
         open.changed_fragments = Some(split.iter().map(|f| f.0).collect());
+        // Every tet written in place was kept for giving back: those and the appended ones
+        // are the tets whose vertex ids closing checks.
+        open.written_tets = Some(replaced.iter().map(|r| r.0).collect());
         open.restore_dag(dag.dag);
         let (mt, links) = open
             .close_keeping_links()
@@ -2033,6 +2036,7 @@ impl MtCutter {
         open.kind.truncate(nf);
         open.error.truncate(nf);
         open.changed_fragments = Some(Vec::new());
+        open.written_tets = Some(undo.replaced.iter().map(|r| r.0).collect());
         open.restore_dag(dag);
         for (k, &f) in undo.born.iter().enumerate().rev() {
             self.split_off[f.idx()] = self.split_off[nf + k];

@@ -54,6 +54,13 @@ pub struct OpenMt {
     /// by tets that tile it, as a cut does, keeps the box: each corner of the tet is a
     /// corner of one of them.
     pub changed_fragments: Option<Vec<u32>>,
+    /// Tets below `opened_sorted` an edit wrote in place (their indices when opened), when
+    /// the editor keeps count (`None`: unknown). Closing checks that every tet names
+    /// vertices of the pool: only these and the tets appended when listed (the others
+    /// were checked when the opened MT was assembled), else every tet of the pool — a
+    /// pass over it that costs a large MT's small edit more than the edit (27 ms for 3.8 M
+    /// tets, measured on a cut of the fandisk-1m MT).
+    pub written_tets: Option<Vec<u32>>,
     /// The fragment boxes when opened.
     boxes: Option<(BoxFrame, Vec<QuantBox>)>,
     /// The DAG tables when opened (kept if the arcs are).
@@ -143,6 +150,7 @@ impl Mt {
             opened_sorted: nt,
             relabelled: Vec::new(),
             changed_fragments: None,
+            written_tets: None,
             boxes: Some((self.frame, self.bbox)),
             dag: Some(KnownDag {
                 out_start: self.out_start,
@@ -277,6 +285,7 @@ impl Mt {
             opened_sorted: 0,
             relabelled: Vec::new(),
             changed_fragments: None,
+            written_tets: None,
             boxes: None,
             dag: None,
             opened_arcs: None,
@@ -336,6 +345,21 @@ impl OpenMt {
             ));
         }
         let mut this = self;
+        // Vertex ids checked here, before the pool is reordered, when the editor listed
+        // the tets it wrote; else by `Mt::assemble`, over the whole pool.
+        let written = this.written_tets.take();
+        if let Some(written) = &written {
+            let nv = this.positions.len();
+            let opened = this.opened_sorted.min(nt);
+            let tets = &this.tets;
+            let listed = written.iter().map(|&t| t as usize).filter(|&t| t < opened);
+            if let Some((t, v)) = listed
+                .chain(opened..nt)
+                .find_map(|t| super::bad_vertex(&tets[t], nv).map(|v| (t, v)))
+            {
+                return Err(format!("tet {t} uses vertex {v}, but the pool has {nv}"));
+            }
+        }
         let known_boxes = match (this.boxes.take(), this.changed_fragments.take()) {
             (Some((frame, boxes)), Some(listed)) => {
                 let mut changed = vec![false; boxes.len()];
@@ -444,6 +468,7 @@ impl OpenMt {
             known_boxes,
             keep_room: true,
             kept_arcs: dag.filter(|_| arcs_kept),
+            vertex_ids_checked: written.is_some(),
         })
         .map(|mt| (mt, links))
     }

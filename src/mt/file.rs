@@ -486,5 +486,6 @@ fn parse(payload: &[u8], version: u32) -> Result<Mt, String> {
         known_boxes: None,
         keep_room: false,
         kept_arcs: None,
+        vertex_ids_checked: false,
     })
 }

@@ -165,6 +165,9 @@ pub(crate) struct MtParts {
     /// (`arc_creator` and `arc_destroyer` are left empty; only `arc_start` is new). Their
     /// creators and destroyers were checked when that MT was assembled.
     pub kept_arcs: Option<KnownDag>,
+    /// Whether every tet is known to name vertices of the pool only (checked by the
+    /// editor's close on the tets it wrote); `false`: [`Mt::assemble`] checks every tet.
+    pub vertex_ids_checked: bool,
 }
 
 /// The derived DAG tables of an MT opened for editing ([`edit::OpenMt`]): when the edit
@@ -284,7 +287,10 @@ impl Mt {
             }
         }
         p.info.cuts.check(nv)?;
-        if let Some((t, v)) = first_bad_vertex(&p.tets, nv) {
+        if let Some((t, v)) = (!p.vertex_ids_checked)
+            .then(|| first_bad_vertex(&p.tets, nv))
+            .flatten()
+        {
             return Err(format!("tet {t} uses vertex {v}, but the pool has {nv}"));
         }
         if let Some(c) = p.point_data.mismatched(nv) {
@@ -860,9 +866,15 @@ fn first_bad_vertex(tets: &[Tet], nv: usize) -> Option<(usize, VertexId)> {
         .par_chunks(BLOCK)
         .position_first(|b| b.iter().fold(false, |acc, t| acc | bad(t)))?;
     let t = block * BLOCK + tets[block * BLOCK..].iter().position(bad)?;
-    let tet = tets[t];
-    let k = (0..4).find(|&k| !(tet[k].idx() < nv || (tet[k] == GHOST && k == 3)))?;
-    Some((t, tet[k]))
+    Some((t, bad_vertex(&tets[t], nv)?))
+}
+
+/// The vertex of `tet` that names no vertex of a pool of `nv`, if any (a ghost's fourth
+/// vertex excepted).
+pub(crate) fn bad_vertex(tet: &Tet, nv: usize) -> Option<VertexId> {
+    (0..4)
+        .find(|&k| !(tet[k].idx() < nv || (tet[k] == GHOST && k == 3)))
+        .map(|k| tet[k])
 }
 
 fn levels_with<I: IntoIterator<Item = u32>>(

@@ -997,6 +997,7 @@ fn freeze<E: TetError + ?Sized>(
         known_boxes: None,
         keep_room: false,
         kept_arcs: None,
+        vertex_ids_checked: false,
     })
     .map_err(BuildError::Internal)
 }
