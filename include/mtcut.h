@@ -1163,11 +1163,15 @@ mtcut_status mtcut_mt_build(const struct mtcut_mesh *mesh,
  * components). Polygon rules as in `mtcut_mesh_cut`. `stats_or_null`, if given, receives the counts over all levels
  * (`tets_after`/`vertices_after`: the model's tets and vertices over all levels).
  *
+ * The model keeps the record of its last cuts (saved with it by `mtcut_mt_save`): a call
+ * whose polygon begins where the last one's crack ended, at an angle (a turning or
+ * tilting blade moved call by call), continues that crack.
+ *
  * The result is checked exhaustively (`Mt::validate`, linear in the model's size) before
- * it replaces the model: a cut the model refuses (one beginning where an earlier crack
- * ends, at an angle to it, as a turning or tilting blade makes: a known limit) or that
- * would leave an invalid model gives `MTCUT_STATUS_INVALID_MESH` naming the fragment or
- * the first violation, and the model is unchanged. Frontiers made earlier keep extracting
+ * it replaces the model: a cut the model refuses (some steps at steep angles to the last
+ * crack, or turning near where an incision ending inside the body stops: a known limit)
+ * or that would leave an invalid model gives `MTCUT_STATUS_INVALID_MESH` naming the
+ * fragment or the first violation, and the model is unchanged. Frontiers made earlier keep extracting
  * from the model as it was when they were made. The two lips of a crack ending inside
  * the body are always extracted at the same resolution. After a cut straight through, a
  * focus extraction of the whole model may show the two bodies touching along the crack
