@@ -4,8 +4,10 @@
 //! made the earlier cuts would have.
 //!
 //! This layer only stores, checks and renumbers the record; the cut layer
-//! (`crate::cut::mt_cut`) writes and reads it: which vertices cuts appended (all lie on
-//! cracks), and, for the last few cuts made at rest, the polygon and what each appended
+//! (`crate::cut::mt_cut`) writes and reads it: the length each vertex's tolerances are
+//! measured by (derived again from a cut finest mesh it would differ near the cracks),
+//! which vertices cuts appended (all lie on cracks), and, for the last few cuts made at
+//! rest, the polygon and what each appended
 //! vertex is (a tip, a lip of either side, a copy where two cracks meet) and the tips of
 //! earlier cracks the cut took onto its own — what a cut continuing one of them at an angle
 //! (a turning or tilting scalpel, paper §5) needs.
