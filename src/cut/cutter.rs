@@ -2,9 +2,9 @@
 //! acceleration structure kept between cuts.
 
 use super::bielser::Bielser17Nodes;
-use super::bvh::{QueryOptions, TetBvh};
+use super::bvh::{Candidates, QueryBuffers, QueryOptions, TetBvh};
 use super::classify::{
-    CrackTips, CutScratch, CutSession, NONE, StateCache, TetClass, VertexOrigin, origin_positions,
+    CrackTips, CutScratch, CutSession, NONE, OriginPositions, StateCache, TetClass, VertexOrigin,
 };
 use super::options::{CutError, CutOptions, Scheme};
 use super::report::{CutResult, CutStats, CutTimes, SplitRecord};
@@ -65,6 +65,7 @@ pub struct Cutter {
     snapped_slot: Vec<u32>,
     /// Scratch of the copy planning ([`plan_by_parents`]).
     links: LinkSlots,
+    buffers: CutBuffers,
     options: CutOptions,
     cuts_applied: u32,
     build_time: Duration,
@@ -78,28 +79,79 @@ pub struct Cutter {
     crack: Option<Vec<bool>>,
 }
 
+/// The lists a cut fills, kept from one cut to the next (cleared, their room kept): a cold
+/// scalpel step allocating them anew spent ~30% of its time in the allocator (malloc,
+/// vectors growing, first touches of fresh pages).
+#[derive(Clone, Default)]
+struct CutBuffers {
+    query: QueryBuffers,
+    found: Candidates,
+    /// The candidates' vertices and classes.
+    tets: Vec<Tet>,
+    classes: Vec<TetClass>,
+    /// The candidates split, their children, and each candidate's children (`NONE`: none).
+    split_at: Vec<usize>,
+    children: Vec<Children>,
+    child_of: Vec<u32>,
+    star: StarIndex,
+    plan: PlanBuffers,
+    /// The snapped vertices, and those a plan pass examines.
+    snapped: Vec<VertexId>,
+    examine: Vec<VertexId>,
+    /// Per candidate, the slot of its second child; per appended tet, its parent.
+    first_appended: Vec<u32>,
+    appended_parents: Vec<u32>,
+    new_positions: OriginPositions,
+}
+
+/// The lists of a plan pass ([`Cutter::plan_pass`]), kept as [`CutBuffers`] are.
+#[derive(Clone, Default)]
+struct PlanBuffers {
+    /// The tets around a vertex, whole ([`plan_by_parents`]) or their children
+    /// ([`plan_vertex`]).
+    around: Vec<ParentAt>,
+    entries: Vec<StarEntry>,
+    scratch: PlanScratch,
+}
+
 /// The snapped vertices of a cut (sorted) and where each lies in the candidates: the
 /// (candidate, local index) pairs of vertex `vertices[i]` are `at[start[i]..start[i + 1]]`,
 /// in candidate order. Built once per cut: unsnapping a vertex changes the classes of the
 /// tets around it but not which candidates hold the vertices still snapped, so every plan
 /// pass reads its vertices' runs here instead of scanning the candidates again.
+#[derive(Clone, Default)]
 struct StarIndex {
     vertices: Vec<VertexId>,
     start: Vec<u32>,
     at: Vec<(u32, u8)>,
+    /// Every (vertex, candidate, local index) on the cut, in candidate order: the
+    /// candidates are read once, the index made from these.
+    found: Vec<(VertexId, u32, u8)>,
 }
 
 impl StarIndex {
-    /// `mark` is a per-vertex scratch array holding `NONE` everywhere, as it is left.
-    fn new(tets: &[Tet], classes: &[TetClass], mark: &mut [u32]) -> StarIndex {
-        let mut vertices: Vec<VertexId> = Vec::new();
-        for (tet, c) in tets.iter().zip(classes) {
-            if c.touches_cut() {
-                for (j, &s) in c.states.iter().enumerate() {
-                    if s == ON && mark[tet[j].idx()] == NONE {
-                        mark[tet[j].idx()] = 0;
-                        vertices.push(tet[j]);
+    /// Indexes the snapped vertices of `tets` (whose classes are `classes`), reusing this
+    /// index's room. `mark` is a per-vertex scratch array holding `NONE` everywhere, as it
+    /// is left.
+    fn build(&mut self, tets: &[Tet], classes: &[TetClass], mark: &mut [u32]) {
+        let StarIndex {
+            vertices,
+            start,
+            at,
+            found,
+        } = self;
+        vertices.clear();
+        found.clear();
+        // (A vertex on the cut makes its tet touch the cut.)
+        for (k, (tet, c)) in tets.iter().zip(classes).enumerate() {
+            for (j, &s) in c.states.iter().enumerate() {
+                if s == ON {
+                    let v = tet[j];
+                    if mark[v.idx()] == NONE {
+                        mark[v.idx()] = 0;
+                        vertices.push(v);
                     }
+                    found.push((v, k as u32, j as u8));
                 }
             }
         }
@@ -107,40 +159,28 @@ impl StarIndex {
         for (i, v) in vertices.iter().enumerate() {
             mark[v.idx()] = i as u32;
         }
-        // A counting sort: candidates stay in order within each run.
-        let mut start = vec![0u32; vertices.len() + 1];
-        for (tet, c) in tets.iter().zip(classes) {
-            if c.touches_cut() {
-                for (&v, &state) in tet.iter().zip(&c.states) {
-                    if state == ON {
-                        start[mark[v.idx()] as usize + 1] += 1;
-                    }
-                }
-            }
+        // A counting sort: candidates stay in order within each run. `start[i + 1]` counts
+        // run i, then (summed) is where run i + 1 begins; `start[i]` is run i's cursor
+        // while filling, which leaves it where run i ends: shifted back after.
+        start.clear();
+        start.resize(vertices.len() + 1, 0);
+        for &(v, _, _) in found.iter() {
+            start[mark[v.idx()] as usize + 1] += 1;
         }
         for i in 0..vertices.len() {
             start[i + 1] += start[i];
         }
-        let mut fill = start.clone();
-        let mut at = vec![(0u32, 0u8); start[vertices.len()] as usize];
-        for (k, (tet, c)) in tets.iter().zip(classes).enumerate() {
-            if c.touches_cut() {
-                for (j, (&v, &state)) in tet.iter().zip(&c.states).enumerate() {
-                    if state == ON {
-                        let s = mark[v.idx()] as usize;
-                        at[fill[s] as usize] = (k as u32, j as u8);
-                        fill[s] += 1;
-                    }
-                }
-            }
+        at.clear();
+        at.resize(found.len(), (0, 0));
+        for &(v, k, j) in found.iter() {
+            let cursor = &mut start[mark[v.idx()] as usize];
+            at[*cursor as usize] = (k, j);
+            *cursor += 1;
         }
-        for v in &vertices {
+        start.rotate_right(1);
+        start[0] = 0;
+        for v in vertices.iter() {
             mark[v.idx()] = NONE;
-        }
-        StarIndex {
-            vertices,
-            start,
-            at,
         }
     }
 
@@ -237,6 +277,7 @@ impl Cutter {
             state_cache: StateCache::default(),
             snapped_slot: Vec::new(),
             links: LinkSlots::default(),
+            buffers: CutBuffers::default(),
             options,
             cuts_applied,
             build_time,
@@ -392,6 +433,35 @@ impl Cutter {
 
     /// [`cut`](Self::cut) with these options.
     fn cut_with(&mut self, polygon: &CutPolygon, opts: CutOptions) -> Result<CutResult, CutError> {
+        let mut buffers = std::mem::take(&mut self.buffers);
+        let result = self.cut_with_buffers(polygon, opts, &mut buffers);
+        self.buffers = buffers;
+        result
+    }
+
+    /// [`cut_with`](Self::cut_with) filling `buffers`.
+    fn cut_with_buffers(
+        &mut self,
+        polygon: &CutPolygon,
+        opts: CutOptions,
+        buffers: &mut CutBuffers,
+    ) -> Result<CutResult, CutError> {
+        let CutBuffers {
+            query,
+            found,
+            tets,
+            classes,
+            split_at,
+            children,
+            child_of,
+            star,
+            plan,
+            snapped,
+            examine,
+            first_appended,
+            appended_parents,
+            new_positions,
+        } = buffers;
         let start = Instant::now();
         let mut times = CutTimes::default();
         let n_vertices = self.mesh.nb_vertices();
@@ -400,7 +470,7 @@ impl Cutter {
 
         // Step 1: candidates, in the hierarchy's depth-first order (deterministic: the
         // hierarchy only depends on the mesh and the cuts applied to it).
-        let found = self.bvh.candidates(
+        self.bvh.candidates(
             self.mesh.positions(),
             &self.scales,
             self.mesh.tets(),
@@ -409,6 +479,7 @@ impl Cutter {
             QueryOptions {
                 parallel: n_tets / 32 >= opts.parallel_threshold,
                 cache: &mut self.state_cache,
+                buffers: query,
                 contour_band: if opts.continue_cracks {
                     super::mt_cut::contour_band(&opts)
                 } else {
@@ -421,9 +492,13 @@ impl Cutter {
                     .map(|t| (t, super::mt_cut::tip_reach(&opts))),
                 crack: self.crack.as_deref(),
             },
+            found,
         );
-        let mut cand = found.tets;
-        let mut states = found.states;
+        let Candidates {
+            tets: cand,
+            states,
+            tested,
+        } = found;
         if opts.continue_cracks {
             let mesh = &self.mesh;
             super::mt_cut::settle_plane_vertices(
@@ -431,13 +506,15 @@ impl Cutter {
                 opts,
                 mesh.positions(),
                 &self.scales,
-                &mut cand,
-                &mut states,
+                cand,
+                states,
                 |t| mesh.tet(t),
             );
         }
-        let cand = &cand;
-        let tets: Vec<Tet> = cand.iter().map(|t| self.mesh.tet(*t)).collect();
+        let cand = &*cand;
+        tets.clear();
+        tets.extend(cand.iter().map(|t| self.mesh.tet(*t)));
+        let tets = &*tets;
         times.query = start.elapsed().as_secs_f64();
 
         // Step 2a: classify every edge and face once.
@@ -450,8 +527,8 @@ impl Cutter {
             &mut self.scratch,
             n_vertices,
         );
-        let mut classes =
-            session.classify(positions, &self.scales, &tets, &states, par(tets.len()));
+        let parallel = par(tets.len());
+        session.classify_into(positions, &self.scales, tets, states, parallel, classes);
         times.classify += t.elapsed().as_secs_f64();
 
         // Step 2b planned: children (with provisional ids for new points), and the copies
@@ -462,8 +539,8 @@ impl Cutter {
             Scheme::Lut => None,
             Scheme::Bielser17 => Some(Bielser17Nodes::allocate(
                 &session,
-                &tets,
-                &classes,
+                tets,
+                classes,
                 VertexId::from_usize(n_vertices),
             )),
         };
@@ -475,11 +552,12 @@ impl Cutter {
             };
             c
         };
-        let split_at: Vec<usize> = (0..tets.len()).filter(|&k| classes[k].is_split()).collect();
+        split_at.clear();
+        split_at.extend((0..tets.len()).filter(|&k| classes[k].is_split()));
         // With room for the tets unsnapping splits again (each pass redoes a few), so that
         // pushing them does not move every child planned so far.
-        let mut children: Vec<Children> =
-            Vec::with_capacity(split_at.len() + split_at.len() / 4 + 16);
+        children.clear();
+        children.reserve(split_at.len() + split_at.len() / 4 + 16);
         if par(split_at.len()) {
             use rayon::prelude::*;
             children.par_extend(
@@ -495,7 +573,8 @@ impl Cutter {
             );
         }
         // children[child_of[k]] are candidate k's children (NONE: not split).
-        let mut child_of = vec![NONE; tets.len()];
+        child_of.clear();
+        child_of.resize(tets.len(), NONE);
         for (i, &k) in split_at.iter().enumerate() {
             child_of[k] = i as u32;
         }
@@ -510,31 +589,34 @@ impl Cutter {
         if self.snapped_slot.len() < n_vertices {
             self.snapped_slot.resize(n_vertices, NONE);
         }
-        let star = StarIndex::new(&tets, &classes, &mut self.snapped_slot);
-        let mut snapped = star.vertices.clone();
-        let snapped = loop {
+        star.build(tets, classes, &mut self.snapped_slot);
+        snapped.clear();
+        snapped.extend_from_slice(&star.vertices);
+        loop {
             passes += 1;
             let t = Instant::now();
             if opts.scheme == Scheme::Lut {
                 // A later pass examines only the vertices whose stars changed.
-                let examine: Vec<VertexId> = match &redo {
-                    None => snapped.clone(),
-                    Some(r) => r
-                        .iter()
-                        .copied()
-                        .filter(|v| snapped.binary_search(v).is_ok())
-                        .collect(),
-                };
+                examine.clear();
+                match &redo {
+                    None => examine.extend_from_slice(snapped),
+                    Some(r) => examine.extend(
+                        r.iter()
+                            .copied()
+                            .filter(|v| snapped.binary_search(v).is_ok()),
+                    ),
+                }
                 let update = Self::plan_pass(
                     &self.mesh,
                     polygon,
-                    &tets,
-                    &classes,
-                    &children,
-                    &child_of,
-                    &examine,
-                    &star,
+                    tets,
+                    classes,
+                    children,
+                    child_of,
+                    examine,
+                    star,
                     &mut self.links,
+                    plan,
                 );
                 copies = match &redo {
                     None => update,
@@ -543,21 +625,14 @@ impl Cutter {
             }
             times.unglue += t.elapsed().as_secs_f64();
             if copies.pinched.is_empty() {
-                break snapped;
+                break;
             }
             let t = Instant::now();
             let mut pinched = std::mem::take(&mut copies.pinched);
             pinched.sort_unstable();
             pinched.dedup();
-            let pinched = with_twins(pinched, &snapped, positions);
-            let affected = unsnap(
-                &mut session,
-                positions,
-                polygon,
-                &pinched,
-                &tets,
-                &mut states,
-            );
+            let pinched = with_twins(pinched, snapped, positions);
+            let affected = unsnap(&mut session, positions, polygon, &pinched, tets, states);
             unsnapped.extend_from_slice(&pinched);
             snapped.retain(|v| pinched.binary_search(v).is_err());
             let sub_tets: Vec<Tet> = affected.iter().map(|&k| tets[k]).collect();
@@ -578,7 +653,7 @@ impl Cutter {
             changed.dedup();
             redo = Some(changed);
             times.classify += t.elapsed().as_secs_f64();
-        };
+        }
 
         // Ids for the new points, in canonical order.
         let t = Instant::now();
@@ -604,7 +679,8 @@ impl Cutter {
         }
         let (edges_crossed, edges_cut) = session.edge_counts();
         // Commit: new vertices, children, copies.
-        let mut first_appended = vec![0u32; tets.len()];
+        first_appended.clear();
+        first_appended.resize(tets.len(), 0);
         let mut next = n_tets as u32;
         for (k, &i) in child_of.iter().enumerate() {
             if i != NONE {
@@ -629,7 +705,7 @@ impl Cutter {
         drop(session);
         // New vertices are combinations of older ones only: their positions (as rounded,
         // which is what the mesh will hold) can be computed before anything changes.
-        let new_positions = origin_positions(self.mesh.positions(), &origins);
+        let new_positions = new_positions.compute(self.mesh.positions(), &origins);
         times.classify += t.elapsed().as_secs_f64();
 
         // Every child positively oriented, exactly, at those positions: the tables make
@@ -684,7 +760,8 @@ impl Cutter {
         self.cuts_applied += 1;
         let mark = self.cuts_applied as f64;
         let mut by_case = [0usize; 10];
-        let mut appended_parents: Vec<u32> = Vec::with_capacity(created_count);
+        appended_parents.clear();
+        appended_parents.reserve(created_count);
         let mut records: Vec<SplitRecord> = Vec::with_capacity(split_count);
         self.bvh.reserve_tets(n_tets + created_count);
         for (k, &i) in child_of.iter().enumerate() {
@@ -717,7 +794,7 @@ impl Cutter {
                 col.values[r.parent.idx()] = mark;
             }
         }
-        self.mesh.cell_data.push_copies(&appended_parents);
+        self.mesh.cell_data.push_copies(appended_parents);
         times.split += t.elapsed().as_secs_f64();
 
         let t = Instant::now();
@@ -760,7 +837,7 @@ impl Cutter {
         let stats = CutStats {
             scheme: opts.scheme,
             snap: opts.snap.relative,
-            tets_tested: found.tested,
+            tets_tested: *tested,
             tets_candidate: cand.len(),
             tets_cut: split_count,
             tets_cut_by_case: by_case,
@@ -803,13 +880,16 @@ impl Cutter {
         examine: &[VertexId],
         star: &StarIndex,
         links: &mut LinkSlots,
+        buffers: &mut PlanBuffers,
     ) -> Copies {
         // The side of a whole candidate around a snapped vertex (`Side` of `unsplit_side`).
         let whole_side = |k: usize| Self::unsplit_side(mesh, polygon, &tets[k], &classes[k].states);
         let mut out = Copies::default();
-        let mut scratch = PlanScratch::default();
-        let mut around: Vec<ParentAt> = Vec::new();
-        let mut entries: Vec<StarEntry> = Vec::new();
+        let PlanBuffers {
+            around,
+            entries,
+            scratch,
+        } = buffers;
         // The tets around v made from candidate k, with their virtual slots and sides: its
         // children through v when split, itself when whole.
         let around_v = |v: VertexId, k: usize, f: &mut dyn FnMut(TetId, Tet, Side)| {
@@ -869,7 +949,7 @@ impl Cutter {
                     }
                     plan_vertex(v, entries, scratch, out);
                 };
-            let plan = plan_by_parents(&around, links);
+            let plan = plan_by_parents(around, links);
             let groups_before = out.groups.len();
             match plan {
                 ParentPlan::Keep => {}
@@ -884,11 +964,11 @@ impl Cutter {
                     }
                     out.groups.push((v, members));
                 }
-                ParentPlan::Children => from_children(&mut entries, &mut out, &mut scratch),
+                ParentPlan::Children => from_children(entries, &mut out, scratch),
             }
             if cfg!(debug_assertions) && plan != ParentPlan::Children {
                 let mut check = Copies::default();
-                from_children(&mut entries, &mut check, &mut scratch);
+                from_children(entries, &mut check, scratch);
                 debug_assert!(
                     check.pinched.is_empty() && check.groups[..] == out.groups[groups_before..],
                     "vertex {v}: planned from its tets as {plan:?}, from their children as {check:?}"
@@ -941,10 +1021,10 @@ pub(crate) fn check_positions(positions: &[DVec3], expected: usize) -> Result<()
 fn add_vertices(
     mesh: &mut TetMesh,
     scales: &mut Vec<f64>,
-    positions: Vec<DVec3>,
+    positions: &[DVec3],
     origins: &[VertexOrigin],
 ) {
-    mesh.positions_vec_mut().extend(positions);
+    mesh.positions_vec_mut().extend_from_slice(positions);
     push_origin_rows(&mut mesh.point_data, scales, origins);
 }
 

@@ -93,7 +93,7 @@ pub fn plan_copies(
 }
 
 /// Scratch space of the copy planning, reused from one vertex to the next.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct PlanScratch {
     faces: FaceTable,
     verts: FaceTable,
@@ -653,7 +653,7 @@ fn regularity(config: usize) -> (u8, u8) {
 /// A small open-addressing table from a key (a face, a vertex of a group) to the first
 /// value stored with it, reused for every vertex (a star has a few dozen tets: sorting them
 /// would cost more). Entries are stamped with a generation, so clearing is free.
-#[derive(Default)]
+#[derive(Clone, Default)]
 struct FaceTable {
     keys: Vec<u64>,
     values: Vec<u32>,
