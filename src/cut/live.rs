@@ -177,6 +177,10 @@ pub struct LiveMt {
     mt_vertex: Vec<VertexId>,
     /// Some current position differs from its rest position.
     deformed: bool,
+    /// Every current position is its rest position bit for bit (not just equal: a zero's
+    /// sign may differ): a cut's new vertices then lie at rest where the current mesh put
+    /// them, and are not placed a second time.
+    at_rest: bool,
     pending: VecDeque<PendingCut>,
     /// A queued cut was decided differently on the MT: replace the current mesh once the
     /// queue is empty.
@@ -229,6 +233,7 @@ impl LiveMt {
             rest,
             mt_vertex: e.vertex_ids,
             deformed: false,
+            at_rest: true,
             pending: VecDeque::new(),
             remesh_due: false,
             match_due: false,
@@ -281,6 +286,12 @@ impl LiveMt {
         self.current.set_positions(positions)?;
         self.epoch += 1;
         self.deformed = positions != self.rest.as_slice();
+        let bits = |p: &DVec3| p.to_array().map(f64::to_bits);
+        self.at_rest = !self.deformed
+            && positions
+                .iter()
+                .zip(&self.rest)
+                .all(|(p, r)| bits(p) == bits(r));
         Ok(())
     }
 
@@ -291,8 +302,13 @@ impl LiveMt {
         self.freeze_pending();
         let n = self.rest.len();
         let r = self.current.cut(polygon)?;
-        let added = self.new_rest.compute(&self.rest, &r.origins);
+        let added = if self.at_rest {
+            &self.current.mesh().positions()[n..]
+        } else {
+            self.new_rest.compute(&self.rest, &r.origins)
+        };
         debug_assert_eq!(n + added.len(), self.current.mesh().nb_vertices());
+        debug_assert!(!self.at_rest || added == origin_positions(&self.rest, &r.origins));
         self.rest.extend_from_slice(added);
         self.mt_vertex.resize(self.rest.len(), VertexId::INVALID);
         self.pending.push_back(PendingCut {
@@ -573,6 +589,8 @@ impl LiveMt {
         self.rest = rest;
         self.mt_vertex = e.vertex_ids;
         self.deformed = deformed;
+        // Not deformed, the mesh holds the extraction's own positions.
+        self.at_rest = !deformed;
         // The vertices new to the current mesh were placed here, not by earlier placements.
         self.epoch += 1;
         Ok(())
