@@ -15,7 +15,6 @@
 //! [`CutSession::resolve`] maps to the final ones; so the tets around a vertex can be
 //! classified again ([`CutSession::forget_vertices`]) before anything is committed.
 
-use super::stamps::Stamps;
 use super::tables::{NEG, ON, OUT, POS, config_index, face_points, is_crossed};
 use crate::geom::{CutPolygon, DVec3, Sign, Tolerance};
 use crate::mesh::fxhash::FxBuild;
@@ -92,33 +91,40 @@ const PROVISIONAL_FACE: u32 = 1 << 30;
 /// vertices near the plane that many tets share.
 #[derive(Clone, Debug, Default)]
 pub struct StateCache {
-    stamps: Stamps,
-    state: Vec<u8>,
+    /// The current cut's epoch (below 2²⁴).
+    epoch: u32,
+    /// Per vertex: the epoch of the cut that computed its state (bits 8 and up) and the
+    /// state (bits 0–7). In one word, a vertex costs one cache miss, not two.
+    entries: Vec<u32>,
 }
 
 impl StateCache {
     /// Starts a new cut over a pool of `n_vertices`.
     pub fn begin(&mut self, n_vertices: usize) {
-        self.stamps.begin();
+        self.epoch += 1;
+        if self.epoch == 1 << 24 {
+            // Wrapped after 16 million cuts: old epochs could collide, start afresh.
+            self.entries.fill(0);
+            self.epoch = 1;
+        }
         self.reserve(n_vertices);
     }
 
     /// Makes room for `n_vertices` (done ahead, the first cut does not pay for it).
     pub fn reserve(&mut self, n_vertices: usize) {
-        if self.stamps.len() < n_vertices {
-            self.stamps.resize(n_vertices);
-            self.state.resize(n_vertices, 0);
+        if self.entries.len() < n_vertices {
+            self.entries.resize(n_vertices, 0);
         }
     }
 
     /// The cached state of `v`, computed by `f` on first request in this cut.
     #[inline]
     pub fn get(&mut self, v: VertexId, f: impl FnOnce() -> u8) -> u8 {
-        let i = v.idx();
-        if self.stamps.mark(i) {
-            self.state[i] = f();
+        let entry = &mut self.entries[v.idx()];
+        if *entry >> 8 != self.epoch {
+            *entry = self.epoch << 8 | u32::from(f());
         }
-        self.state[i]
+        *entry as u8
     }
 }
 
@@ -171,9 +177,12 @@ impl CrackTips {
 /// good part of the allocation that cost ~30% of a cold scalpel step.
 #[derive(Clone, Debug, Default)]
 pub struct CutScratch {
-    stamps: Stamps,
-    edge_head: Vec<u32>,
-    face_head: Vec<u32>,
+    /// The current session's epoch.
+    epoch: u32,
+    /// Per vertex: the epoch of the last session that used it, then the heads of its edge
+    /// and face lists in that session. Side by side, a vertex costs one cache miss, not
+    /// three (separate arrays made most of the classification's time in a cold step).
+    heads: Vec<[u32; 3]>,
     edges: Vec<EdgeRec>,
     faces: Vec<FaceRec>,
 }
@@ -184,16 +193,19 @@ impl CutScratch {
     }
 
     fn begin(&mut self, n_vertices: usize) {
-        self.stamps.begin();
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            // Wrapped after 4 billion sessions: old epochs could collide, start afresh.
+            self.heads.fill([0, NONE, NONE]);
+            self.epoch = 1;
+        }
         self.reserve(n_vertices);
     }
 
     /// Makes room for `n_vertices` (done ahead, the first cut does not pay for it).
     pub(crate) fn reserve(&mut self, n_vertices: usize) {
-        if self.stamps.len() < n_vertices {
-            self.stamps.resize(n_vertices);
-            self.edge_head.resize(n_vertices, NONE);
-            self.face_head.resize(n_vertices, NONE);
+        if self.heads.len() < n_vertices {
+            self.heads.resize(n_vertices, [0, NONE, NONE]);
         }
     }
 }
@@ -571,16 +583,12 @@ impl<'a> CutSession<'a> {
     }
 
     fn head(&mut self, v: VertexId, face: bool) -> &mut u32 {
-        let i = v.idx();
-        if self.scratch.stamps.mark(i) {
-            self.scratch.edge_head[i] = NONE;
-            self.scratch.face_head[i] = NONE;
+        let epoch = self.scratch.epoch;
+        let h = &mut self.scratch.heads[v.idx()];
+        if h[0] != epoch {
+            *h = [epoch, NONE, NONE];
         }
-        if face {
-            &mut self.scratch.face_head[i]
-        } else {
-            &mut self.scratch.edge_head[i]
-        }
+        &mut h[1 + usize::from(face)]
     }
 
     /// The record of edge `a`–`b`, created (unclassified) if new.

@@ -1,7 +1,8 @@
 //! Marks per index that a new pass clears for free: an index is marked in the current pass
 //! when its stamp equals the pass's epoch, so starting a pass only moves the epoch on. The
-//! cut's per-vertex scratch (state caches, edge and face lists, link slots, pieces) and its
-//! small hash tables use it, so nothing is cleared in proportion to the mesh per cut.
+//! MT cut's per-vertex pieces and the copy planning's small hash tables use it, so nothing
+//! is cleared in proportion to the mesh per cut. (The per-vertex state cache and edge and
+//! face lists keep their epoch next to their data instead: one cache miss per vertex.)
 
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Stamps {
@@ -18,11 +19,6 @@ impl Stamps {
             self.stamp.fill(0);
             self.epoch = 1;
         }
-    }
-
-    /// How many indices can be marked.
-    pub fn len(&self) -> usize {
-        self.stamp.len()
     }
 
     /// Room for `n` indices (new ones unmarked).
