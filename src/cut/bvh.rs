@@ -75,8 +75,8 @@ pub struct Candidates {
 }
 
 /// The lists a query on one thread fills on its way (nodes of a level, leaves, tets),
-/// kept by the caller from one query to the next: allocating them anew was part of the
-/// allocation that cost ~30% of a cold scalpel step.
+/// kept by the caller from one query to the next, so that a query does not allocate (with
+/// the other buffers kept this way, a cold scalpel step 3-8% faster).
 #[derive(Clone, Debug, Default)]
 pub struct QueryBuffers {
     leaves: Vec<u32>,

@@ -202,8 +202,8 @@ pub struct LiveMt {
     /// where the earlier cuts saw it (a blade continuing a crack meets its tips where they
     /// were made).
     placement: Option<(u64, Vec<DVec3>)>,
-    /// The rest positions of a frontier-first cut's new vertices, kept for the next cut
-    /// (allocation was ~30% of a cold step).
+    /// The rest positions of a frontier-first cut's new vertices (a deformed body's), kept
+    /// for the next cut so that it does not allocate them.
     new_rest: OriginPositions,
 }
 
