@@ -335,6 +335,10 @@ pub struct MtCutter {
     components: usize,
     /// Per vertex: whether it lies on a crack ([`MtCutter::crack_vertices`]).
     crack: Vec<bool>,
+    /// Per-vertex scratch of step 3's grouping of tets into pieces, kept from cut to cut
+    /// (a table over the pool: allocating it per cut would cost in proportion to the
+    /// pool).
+    pieces: Pieces,
 }
 
 /// Largest `snap` an MT cut accepts (see the module docs, "Limits").
@@ -447,6 +451,7 @@ impl MtCutter {
             links,
             components,
             crack,
+            pieces: Pieces::new(0),
         })
     }
 
@@ -1251,7 +1256,8 @@ impl MtCutter {
         // over its ceiling; otherwise (a cut separating the finest mesh, say) it is split
         // like the others.
         let mut whole_roots = 0;
-        let mut pieces: Option<Pieces> = None;
+        let pieces = &mut self.pieces;
+        pieces.fit(open.positions.len());
         for &r in &roots_before {
             if !involved[r.idx()] || self.cracked.get(r.idx()).copied().unwrap_or(false) {
                 continue;
@@ -1262,7 +1268,6 @@ impl MtCutter {
                 .copied()
                 .filter(|&t| open.creator[t as usize] == r)
                 .collect();
-            let pieces = pieces.get_or_insert_with(|| Pieces::new(open.positions.len()));
             if pieces.one_piece(&open.tets, made.iter().copied()) {
                 involved[r.idx()] = false;
                 whole_roots += 1;
@@ -1271,7 +1276,8 @@ impl MtCutter {
                         let ceiling: Vec<u32> = (0..open.tets.len() as u32)
                             .filter(|&t| open.creator[t as usize] == r)
                             .collect();
-                        split_fragment(&open.tets, &open.positions, &[], &ceiling)
+                        let mut scratch = Pieces::new(open.positions.len());
+                        split_fragment(&open.tets, &open.positions, &[], &ceiling, &mut scratch)
                             .iter()
                             .all(|&p| p == 0)
                     },
@@ -1326,7 +1332,7 @@ impl MtCutter {
         let mut first_part: Vec<u32> = Vec::with_capacity(order.len() + 1);
         let mut next = nf as u32;
         for i in 0..order.len() {
-            let p = split_fragment(&open.tets, &open.positions, &floor[i], &ceiling[i]);
+            let p = split_fragment(&open.tets, &open.positions, &floor[i], &ceiling[i], pieces);
             first_part.push(next);
             next += p.iter().map(|&x| x + 1).max().unwrap_or(1);
             parts.push(p);
@@ -2084,7 +2090,7 @@ fn cracked_fragments(mt: &Mt) -> Vec<bool> {
                 }
                 let floor: Vec<u32> = mt.destroyed_tets(f).map(|t| t.0).collect();
                 let ceiling: Vec<u32> = mt.created_tets(f).map(|t| t.0).collect();
-                let parts = split_fragment(tets, mt.positions(), &floor, &ceiling);
+                let parts = split_fragment(tets, mt.positions(), &floor, &ceiling, pieces);
                 parts.iter().any(|&p| p > 0)
             },
         )
@@ -2125,18 +2131,41 @@ struct Pieces {
 impl Pieces {
     /// Scratch for lists of tets over a pool of `vertices` vertices.
     fn new(vertices: usize) -> Pieces {
-        let mut stamps = Stamps::default();
-        stamps.resize(vertices);
-        Pieces {
-            first: vec![0; vertices],
-            stamps,
+        let mut pieces = Pieces {
+            first: Vec::new(),
+            stamps: Stamps::default(),
             parent: Vec::new(),
+        };
+        pieces.fit(vertices);
+        pieces
+    }
+
+    /// Room for a pool grown to `vertices` vertices.
+    fn fit(&mut self, vertices: usize) {
+        self.stamps.resize(vertices);
+        self.first.resize(vertices, 0);
+    }
+
+    /// Starts a list: no vertex met yet.
+    fn begin(&mut self) {
+        self.stamps.begin();
+    }
+
+    /// The first tet (`i`, its place in the list) met at `v` since [`begin`](Self::begin),
+    /// if an earlier one was (else `i` is now).
+    #[inline]
+    fn first_at(&mut self, v: VertexId, i: u32) -> Option<u32> {
+        if self.stamps.mark(v.idx()) {
+            self.first[v.idx()] = i;
+            None
+        } else {
+            Some(self.first[v.idx()])
         }
     }
 
     /// Whether the tets `list` are joined into one piece through shared vertices.
     fn one_piece(&mut self, tets: &[Tet], list: impl Iterator<Item = u32>) -> bool {
-        self.stamps.begin();
+        self.begin();
         self.parent.clear();
         let mut pieces = 0u32;
         for t in list {
@@ -2144,13 +2173,8 @@ impl Pieces {
             self.parent.push(i);
             pieces += 1;
             for &v in tets[t as usize].iter().filter(|v| **v != GHOST) {
-                if self.stamps.mark(v.idx()) {
-                    self.first[v.idx()] = i;
-                } else {
-                    let (x, y) = (
-                        find(&mut self.parent, self.first[v.idx()]),
-                        find(&mut self.parent, i),
-                    );
+                if let Some(o) = self.first_at(v, i) {
+                    let (x, y) = (find(&mut self.parent, o), find(&mut self.parent, i));
                     if x != y {
                         self.parent[x.max(y) as usize] = x.min(y);
                         pieces -= 1;
@@ -2370,39 +2394,26 @@ fn side_of_states(tet: &Tet, states: [u8; 4], positions: &[DVec3], polygon: &Cut
 /// centroid of one of its own (exact point-in-tet tests).
 ///
 /// Returns the part of each floor tet then each ceiling tet, numbered by first appearance.
-fn split_fragment(tets: &[Tet], positions: &[DVec3], floor: &[u32], ceiling: &[u32]) -> Vec<u32> {
+fn split_fragment(
+    tets: &[Tet],
+    positions: &[DVec3],
+    floor: &[u32],
+    ceiling: &[u32],
+    scratch: &mut Pieces,
+) -> Vec<u32> {
     let n = floor.len() + ceiling.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
     let all: Vec<u32> = floor.iter().chain(ceiling).copied().collect();
-    // The first tet met at each vertex: a table over the pool's vertices for a large
-    // fragment (the root holds the whole finest mesh), a map for the others.
-    let mut join = |first_at: &mut dyn FnMut(VertexId, u32) -> Option<u32>| {
-        for (i, &t) in all.iter().enumerate() {
-            for &v in tets[t as usize].iter().filter(|v| **v != GHOST) {
-                if let Some(o) = first_at(v, i as u32) {
-                    union(&mut parent, i as u32, o);
-                }
+    // The first tet met at each vertex, in a table over the pool's vertices kept from
+    // fragment to fragment (a hash map per fragment cost a cut of the fandisk-1m MT, with
+    // its thousand fragments involved, more than the rest of the grouping).
+    scratch.begin();
+    for (i, &t) in all.iter().enumerate() {
+        for &v in tets[t as usize].iter().filter(|v| **v != GHOST) {
+            if let Some(o) = scratch.first_at(v, i as u32) {
+                union(&mut parent, i as u32, o);
             }
         }
-    };
-    if n >= positions.len() / 16 {
-        let mut first = vec![u32::MAX; positions.len()];
-        join(&mut |v, i| match first[v.idx()] {
-            u32::MAX => {
-                first[v.idx()] = i;
-                None
-            }
-            o => Some(o),
-        });
-    } else {
-        let mut first: HashMap<VertexId, u32, FxBuild> = HashMap::default();
-        join(&mut |v, i| match first.get(&v) {
-            Some(&o) => Some(o),
-            None => {
-                first.insert(v, i);
-                None
-            }
-        });
     }
     // Parts present on one level only.
     let nfl = floor.len() as u32;
