@@ -2,8 +2,9 @@
 //! 12 steps writes 13 valid meshes listed in a .pvd, the body parts at the step the blade
 //! leaves it, and the saved model is valid with two components; bad path files fail with
 //! a message naming the problem; a turning path stops at the step that breaks the model,
-//! keeping the steps before it and saving nothing. Given a mesh, the scalpel cuts the mesh
-//! itself, and a turning blade works.
+//! keeping the steps before it and saving nothing; a turning blade saved halfway goes on
+//! turning on the saved model. Given a mesh, the scalpel cuts the mesh itself, and a
+//! turning blade works.
 
 mod blades;
 mod cli_support;
@@ -186,6 +187,43 @@ fn a_step_that_breaks_the_model_stops_the_run() {
         read_valid(&out.join(&name));
     }
     assert!(!pvd.contains("step-0011.vtu"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A turning blade run in two sittings: the first run turns by 8° per step and stops
+/// inside the body (`--save`), the second, on the saved model, goes on turning from where
+/// the first stopped (its first step continues the saved crack at an angle: the model
+/// carries the record of its last cuts) until the corner comes off.
+#[test]
+fn a_turning_blade_resumed_on_the_saved_model_continues_its_crack() {
+    let dir = scratch("cli_scalpel_resumed");
+    let (model, b) = fandisk_model(&dir);
+    let at = |k: usize| blades::on_arc(&b, -8.0 + 8.0 * k as f64).map(|p| p.to_array());
+    let first: Vec<[[f64; 3]; 2]> = (0..6).map(at).collect();
+    let rest: Vec<[[f64; 3]; 2]> = (5..16).map(at).collect();
+    let (p1, p2) = (dir.join("first.json"), dir.join("rest.json"));
+    write_path(&p1, &first);
+    write_path(&p2, &rest);
+    let (half, whole) = (dir.join("half.mt"), dir.join("whole.mt"));
+    let j = json(&scalpel_args(
+        &model,
+        &p1,
+        &dir.join("s1"),
+        &half,
+        &["--json"],
+    ));
+    assert_eq!(j["components"], 1, "{j}");
+    let j = json(&scalpel_args(
+        &half,
+        &p2,
+        &dir.join("s2"),
+        &whole,
+        &["--json"],
+    ));
+    assert_eq!(j["steps"].as_array().expect("steps").len(), 10, "{j}");
+    assert_eq!(j["components"], 2, "the corner did not come off: {j}");
+    let back = Mt::load(&whole).expect("saved model");
+    assert!(back.validate().is_valid());
     std::fs::remove_dir_all(&dir).ok();
 }
 
