@@ -543,10 +543,8 @@ fn closing_an_edit_checks_the_vertex_ids_it_wrote() {
     let mut open = mt.clone().open();
     let mut t = open.tets[0];
     t[2] = beyond;
-    let (c, d) = (open.creator[0], open.destroyer[0]);
-    open.tets.push(t);
-    open.creator.push(c);
-    open.destroyer.push(d);
+    let (c, d) = (open.creator()[0], open.destroyer()[0]);
+    open.push_tet(t, c, d);
     open.cell_data.push_copies(&[0]);
     open.written_tets = Some(Vec::new());
     let e = open.close().unwrap_err();

@@ -1119,7 +1119,7 @@ impl MtCutter {
         let mut appended_parents: Vec<u32> = Vec::new();
         let mut replaced: Vec<Replaced> = Vec::new();
         let mut keep = |open: &OpenMt, t: usize, tet: Tet| {
-            replaced.push((t as u32, tet, open.creator[t], open.destroyer[t]));
+            replaced.push((t as u32, tet, open.creator()[t], open.destroyer()[t]));
         };
         for (k, &parent) in cand.iter().enumerate() {
             match child_of[k] {
@@ -1138,17 +1138,11 @@ impl MtCutter {
                     open.tets[parent.idx()] =
                         for_side(ch.tets[0], ch.sides[0], &ch.tets[0], &open.positions);
                     touched.push(parent.0);
-                    let (c, d) = (open.creator[parent.idx()], open.destroyer[parent.idx()]);
+                    let (c, d) = (open.creator()[parent.idx()], open.destroyer()[parent.idx()]);
                     for j in 1..ch.len {
                         touched.push(open.tets.len() as u32);
-                        open.tets.push(for_side(
-                            ch.tets[j],
-                            ch.sides[j],
-                            &ch.tets[j],
-                            &open.positions,
-                        ));
-                        open.creator.push(c);
-                        open.destroyer.push(d);
+                        let child = for_side(ch.tets[j], ch.sides[j], &ch.tets[j], &open.positions);
+                        open.push_tet(child, c, d);
                         appended_parents.push(parent.0);
                     }
                 }
@@ -1165,15 +1159,14 @@ impl MtCutter {
             let key = oriented_face(tet[0].0, tet[1].0, tet[2].0);
             if let Some(subs) = sub_faces.get(&key) {
                 stats.ghosts_split += 1;
-                let (c, d) = (open.creator[g], open.destroyer[g]);
+                let (c, d) = (open.creator()[g], open.destroyer()[g]);
                 keep(&open, g, tet);
                 open.tets[g] = for_side(subs[0].0, subs[0].1, &subs[0].2, &open.positions);
                 ghost_touched.push(g as u32);
                 for &(t, side, holder) in &subs[1..] {
                     ghost_touched.push(open.tets.len() as u32);
-                    open.tets.push(for_side(t, side, &holder, &open.positions));
-                    open.creator.push(c);
-                    open.destroyer.push(d);
+                    let sub = for_side(t, side, &holder, &open.positions);
+                    open.push_tet(sub, c, d);
                     appended_parents.push(g as u32);
                 }
             } else if tet[..3].iter().any(|v| around.contains_key(v)) {
@@ -1211,8 +1204,8 @@ impl MtCutter {
             }
         }
         let coexist = |a: usize, b: usize| {
-            !dag.reaches(open.destroyer[a], open.creator[b])
-                && !dag.reaches(open.destroyer[b], open.creator[a])
+            !dag.reaches(open.destroyer()[a], open.creator()[b])
+                && !dag.reaches(open.destroyer()[b], open.creator()[a])
         };
         let mut crack: Vec<(Tet, FragmentId, FragmentId)> = Vec::new();
         for &t in &touched {
@@ -1223,16 +1216,14 @@ impl MtCutter {
                     .is_some_and(|l| l.iter().any(|&o| coexist(t as usize, o as usize)));
                 if all_cut(&tet, lf) && !matched {
                     let g = [tet[lf[0]], tet[lf[1]], tet[lf[2]], GHOST];
-                    crack.push((g, open.creator[t as usize], open.destroyer[t as usize]));
+                    crack.push((g, open.creator()[t as usize], open.destroyer()[t as usize]));
                     ghost_touched.push((n_pool + appended_parents.len() + crack.len() - 1) as u32);
                 }
             }
         }
         stats.crack_ghosts = crack.len();
         for (g, c, d) in crack {
-            open.tets.push(g);
-            open.creator.push(c);
-            open.destroyer.push(d);
+            open.push_tet(g, c, d);
         }
         open.cell_data.push_zeros(stats.crack_ghosts);
         stats.time.split = t_split.elapsed().as_secs_f64();
@@ -1244,8 +1235,8 @@ impl MtCutter {
         let changed_any = !touched.is_empty() || !ghost_touched.is_empty();
         let mut involved: Vec<bool> = self.cracked.iter().map(|&c| changed_any && c).collect();
         for &t in touched.iter().chain(&ghost_touched) {
-            involved[open.creator[t as usize].idx()] = true;
-            involved[open.destroyer[t as usize].idx()] = true;
+            involved[open.creator()[t as usize].idx()] = true;
+            involved[open.destroyer()[t as usize].idx()] = true;
         }
         // A root (its ceiling is a whole finest mesh) that was one part stays one part
         // when what the cut made of its tets is one piece (joined through shared
@@ -1266,7 +1257,7 @@ impl MtCutter {
                 .iter()
                 .chain(&ghost_touched)
                 .copied()
-                .filter(|&t| open.creator[t as usize] == r)
+                .filter(|&t| open.creator()[t as usize] == r)
                 .collect();
             if pieces.one_piece(&open.tets, made.iter().copied()) {
                 involved[r.idx()] = false;
@@ -1274,7 +1265,7 @@ impl MtCutter {
                 debug_assert!(
                     {
                         let ceiling: Vec<u32> = (0..open.tets.len() as u32)
-                            .filter(|&t| open.creator[t as usize] == r)
+                            .filter(|&t| open.creator()[t as usize] == r)
                             .collect();
                         let mut scratch = Pieces::new(open.positions.len());
                         split_fragment(&open.tets, &open.positions, &[], &ceiling, &mut scratch)
@@ -1318,7 +1309,10 @@ impl MtCutter {
             );
         }
         for t in n_tets..open.tets.len() {
-            let (c, d) = (slot[open.creator[t].idx()], slot[open.destroyer[t].idx()]);
+            let (c, d) = (
+                slot[open.creator()[t].idx()],
+                slot[open.destroyer()[t].idx()],
+            );
             if c != u32::MAX {
                 ceiling[c as usize].push(t as u32);
             }
@@ -1348,7 +1342,7 @@ impl MtCutter {
         for (i, list) in floor.iter().enumerate() {
             for (j, &t) in list.iter().enumerate() {
                 let below = first_part[i] + parts[i][j];
-                let c = open.creator[t as usize];
+                let c = open.creator()[t as usize];
                 if slot[c.idx()] == u32::MAX {
                     union(&mut body, c.0, below);
                 } else {
@@ -1362,7 +1356,7 @@ impl MtCutter {
                 let above = first_part[i] + parts[i][nfl + j];
                 let below = match below_of.get(&t) {
                     Some(&b) => b,
-                    None => open.destroyer[t as usize].0,
+                    None => open.destroyer()[t as usize].0,
                 };
                 union(&mut body, above, below);
             }
@@ -1441,15 +1435,13 @@ impl MtCutter {
             for (j, &t) in floor[i].iter().enumerate() {
                 let g = id(parts[i][j]);
                 if g != f {
-                    open.destroyer[t as usize] = g;
-                    open.relabelled.push(t);
+                    open.set_destroyer(t as usize, g);
                 }
             }
             for (j, &t) in ceiling[i].iter().enumerate() {
                 let g = id(parts[i][nfl + j]);
                 if g != f {
-                    open.creator[t as usize] = g;
-                    open.relabelled.push(t);
+                    open.set_creator(t as usize, g);
                 }
             }
         }
@@ -1805,7 +1797,7 @@ impl Changed<'_> {
             let [a, b, c, d] = tet.map(|v| open.positions[v.idx()]);
             if crate::geom::orient3d(a, b, c, d) != crate::geom::Sign::Positive {
                 let detail = format!("a tet it made, {tet:?}, is flat or inverted");
-                return Err((open.creator[t].idx(), detail));
+                return Err((open.creator()[t].idx(), detail));
             }
         }
         let whole = |f: FragmentId, above: bool| match open.kind[f.idx()] {
@@ -1824,7 +1816,7 @@ impl Changed<'_> {
         }
         let now = self.replaced.iter().map(|r| r.0 as usize);
         for t in now.chain(self.n_tets..open.tets.len()) {
-            let (c, d) = (open.creator[t], open.destroyer[t]);
+            let (c, d) = (open.creator()[t], open.destroyer()[t]);
             for (f, above) in [(self.origin(c), true), (self.origin(d), false)] {
                 if whole(f, above) {
                     sides.entry(f.0).or_default().1.push(open.tets[t]);
@@ -1857,7 +1849,7 @@ impl Changed<'_> {
         // most are on a scalpel's later steps) keep the tets, and the boundary, they had.
         let mut wrote: Vec<u32> = self.replaced.iter().flat_map(|r| [r.2.0, r.3.0]).collect();
         for t in self.n_tets..open.tets.len() {
-            let (c, d) = (open.creator[t], open.destroyer[t]);
+            let (c, d) = (open.creator()[t], open.destroyer()[t]);
             wrote.extend([self.origin(c).0, self.origin(d).0]);
         }
         wrote.sort_unstable();
@@ -1876,8 +1868,8 @@ impl Changed<'_> {
             // The fragment and those split off it.
             let mut ids: Vec<FragmentId> = Vec::new();
             if was_split {
-                let links = floor[i].iter().map(|&t| open.destroyer[t as usize]);
-                ids.extend(links.chain(ceiling[i].iter().map(|&t| open.creator[t as usize])));
+                let links = floor[i].iter().map(|&t| open.destroyer()[t as usize]);
+                ids.extend(links.chain(ceiling[i].iter().map(|&t| open.creator()[t as usize])));
                 ids.retain(|&g| g != f);
                 ids.sort_unstable();
                 ids.dedup();
@@ -1885,8 +1877,8 @@ impl Changed<'_> {
             counts.reserve(4 * (floor[i].len() + ceiling[i].len()));
             for g in std::iter::once(f).chain(ids) {
                 let c = Boundaries::compare(
-                    linked(&floor[i], &open.destroyer, g, &open.tets),
-                    linked(&ceiling[i], &open.creator, g, &open.tets),
+                    linked(&floor[i], open.destroyer(), g, &open.tets),
+                    linked(&ceiling[i], open.creator(), g, &open.tets),
                     counts,
                 );
                 if !c.same || c.doubled != [0, 0] {
@@ -2023,20 +2015,18 @@ impl MtCutter {
         for &(t, tet, c, d) in &undo.replaced {
             let t = t as usize;
             open.tets[t] = tet;
-            open.creator[t] = c;
-            open.destroyer[t] = d;
+            open.set_creator(t, c);
+            open.set_destroyer(t, d);
         }
+        // Every tet the cut relabelled goes back to the fragments it was split off.
         let origin = |g: FragmentId| origin_of(g, nf, &undo.born);
-        for &t in open.relabelled.iter().filter(|&&t| (t as usize) < n_tets) {
-            let t = t as usize;
-            open.creator[t] = origin(open.creator[t]);
-            open.destroyer[t] = origin(open.destroyer[t]);
+        let relabelled = open.relabelled().to_vec();
+        for t in relabelled.into_iter().map(|t| t as usize) {
+            let (c, d) = (open.creator()[t], open.destroyer()[t]);
+            open.set_creator(t, origin(c));
+            open.set_destroyer(t, origin(d));
         }
-        open.relabelled.clear();
-        open.tets.truncate(n_tets);
-        open.creator.truncate(n_tets);
-        open.destroyer.truncate(n_tets);
-        open.cell_data.truncate(n_tets);
+        open.truncate_tets(n_tets);
         open.positions.truncate(undo.nv);
         open.point_data.truncate(undo.nv);
         open.kind.truncate(nf);

@@ -7,15 +7,15 @@
 //! assembles the MT, deriving levels, boxes and arc lists with the same code as a build or
 //! a load, so an edit cannot leave them inconsistent. Three exceptions keep the cost of a
 //! small edit of a large MT near the size of the edit: the sort is a merge in place when
-//! little moved (its result does not depend on the editor's hint: the tets not said to
-//! move are checked to be in order, a read-only pass over the arc columns); an editor
-//! that lists the fragments whose box it may have changed ([`OpenMt::changed_fragments`])
-//! keeps the others' boxes (the cut does; `Mt::validate` checks every box); and when the
-//! arcs come back joining the same fragments as when opened (an edit that adds no
-//! fragment and only moves tets into arcs the MT had), the arcs' ranges are updated from
-//! the moved tets alone, then checked against every arc's ends (a read-only pass: the
-//! result still does not depend on the hint), and the DAG's tables are the opened MT's
-//! (`Mt::validate` derives levels again and compares). Appended vertices and tets need
+//! little moved (the creators and destroyers change only through
+//! [`OpenMt::set_creator`] and [`OpenMt::set_destroyer`], which list the tets they
+//! relabel, so the tets not listed are still in the opened MT's arc order and are not
+//! read); an editor that lists the fragments whose box it may have changed
+//! ([`OpenMt::changed_fragments`]) keeps the others' boxes (the cut does; `Mt::validate`
+//! checks every box); and when the arcs come back joining the same fragments as when
+//! opened (an edit that adds no fragment and only moves tets into arcs the MT had), the
+//! arcs' ranges are updated from the moved tets alone and the DAG's tables are the opened
+//! MT's (`Mt::validate` derives levels again and compares). Appended vertices and tets need
 //! attribute rows; the editor pushes them (interpolated for vertices, inherited for tets,
 //! zeros for ghosts).
 //!
@@ -35,17 +35,19 @@ pub struct OpenMt {
     /// Every tet of every level, ghosts included.
     pub tets: Vec<Tet>,
     pub cell_data: Attributes,
-    /// Creator and destroyer of each tet.
-    pub creator: Vec<FragmentId>,
-    pub destroyer: Vec<FragmentId>,
+    /// Creator and destroyer of each tet: read with [`creator`](Self::creator) and
+    /// [`destroyer`](Self::destroyer), changed only through the methods that keep
+    /// `relabelled` complete.
+    creator: Vec<FragmentId>,
+    destroyer: Vec<FragmentId>,
     pub kind: Vec<FragmentKind>,
     pub error: Vec<f64>,
     pub info: MtInfo,
     /// How many leading tets were in arc order when the MT was opened (0: unknown).
-    pub opened_sorted: usize,
-    /// Tets below `opened_sorted` whose creator or destroyer an edit changed. A hint for
-    /// [`close`](Self::close) only: the order it produces does not depend on it.
-    pub relabelled: Vec<u32>,
+    opened_sorted: usize,
+    /// Every tet below `opened_sorted` whose creator or destroyer was set since opening
+    /// (repeats allowed): the tets not listed are where the opened MT's arcs had them.
+    relabelled: Vec<u32>,
     /// Fragments whose box an edit may have changed, when the editor keeps count (`None`:
     /// unknown, every fragment box is derived again when closing). Fragments added count
     /// without being listed; any other fragment keeps the box it had when opened, so an
@@ -303,6 +305,56 @@ impl Mt {
 }
 
 impl OpenMt {
+    /// The creator of each tet, in pool order.
+    pub fn creator(&self) -> &[FragmentId] {
+        &self.creator
+    }
+
+    /// The destroyer of each tet, in pool order.
+    pub fn destroyer(&self) -> &[FragmentId] {
+        &self.destroyer
+    }
+
+    /// Makes fragment `f` the creator of tet `t` (panics when `t` is not a tet).
+    pub fn set_creator(&mut self, t: usize, f: FragmentId) {
+        self.creator[t] = f;
+        self.note_relabelled(t);
+    }
+
+    /// Makes fragment `f` the destroyer of tet `t` (panics when `t` is not a tet).
+    pub fn set_destroyer(&mut self, t: usize, f: FragmentId) {
+        self.destroyer[t] = f;
+        self.note_relabelled(t);
+    }
+
+    fn note_relabelled(&mut self, t: usize) {
+        if t < self.opened_sorted {
+            self.relabelled.push(t as u32);
+        }
+    }
+
+    /// The tets below the opened MT's pool length whose creator or destroyer was set since
+    /// it was opened (repeats allowed; the others are where its arcs had them).
+    pub(crate) fn relabelled(&self) -> &[u32] {
+        &self.relabelled
+    }
+
+    /// Appends `tet`, created by `creator` and destroyed by `destroyer` (its attribute
+    /// rows are the caller's to push).
+    pub fn push_tet(&mut self, tet: Tet, creator: FragmentId, destroyer: FragmentId) {
+        self.tets.push(tet);
+        self.creator.push(creator);
+        self.destroyer.push(destroyer);
+    }
+
+    /// Drops the tets from `n` on, with their creators, destroyers and attribute rows.
+    pub fn truncate_tets(&mut self, n: usize) {
+        self.tets.truncate(n);
+        self.creator.truncate(n);
+        self.destroyer.truncate(n);
+        self.cell_data.truncate(n);
+    }
+
     /// The DAG tables of the MT this was opened from (successors by `out_start` and
     /// `arc_destroyer`, levels), lent to an editor that reads the DAG as it was before the
     /// edit; [`restore_dag`](Self::restore_dag) gives them back for [`close`](Self::close)
@@ -317,8 +369,7 @@ impl OpenMt {
 
     /// Sorts the pool into arcs (by creator, then destroyer, then current position: stable)
     /// and assembles the MT. An edit of a small part of an opened MT is reordered in place
-    /// (see `Merge`; `relabelled` makes it apply, and cannot change the result). Errors say
-    /// what is inconsistent (an editing bug).
+    /// (see `Merge`). Errors say what is inconsistent (an editing bug).
     pub fn close(self) -> Result<Mt, String> {
         self.close_keeping_links().map(|(mt, _)| mt)
     }
@@ -429,10 +480,6 @@ impl OpenMt {
                 )
             }
         };
-        let kept_starts = kept_starts.filter(|starts| {
-            let dag = this.dag.as_ref().expect("kept arcs come with their DAG");
-            arcs_hold(starts, dag, &creator, &destroyer)
-        });
         debug_assert!(
             kept_starts
                 .as_ref()
@@ -497,34 +544,6 @@ fn arcs_of(
     (arc_start, arc_creator, arc_destroyer)
 }
 
-/// Whether the pool, sorted by arc ([`Merge`] sorts it, or refuses), is exactly the arcs of
-/// `dag` over the ranges `starts`: no range is empty, and the first and the last tet of each
-/// have that arc's creator and destroyer. In a sorted pool the tets between two tets of one
-/// arc belong to it, so the ends of each range say what a pass over all its tets would (the
-/// arcs of `dag` are listed in the pool's order: by creator, then destroyer). Proportional
-/// to the arcs, not to the pool (by creator, on both cores); what makes ranges updated from
-/// the moved tets alone ([`Merge::kept_arcs`]) independent of the editor's hint.
-fn arcs_hold(
-    starts: &[u32],
-    dag: &KnownDag,
-    creator: &[FragmentId],
-    destroyer: &[FragmentId],
-) -> bool {
-    let na = dag.arc_destroyer.len();
-    let nf = dag.out_start.len() - 1;
-    let is = |t: usize, f: usize, d: FragmentId| creator[t].idx() == f && destroyer[t] == d;
-    starts.len() == na + 1
-        && starts[0] == 0
-        && starts[na] as usize == creator.len()
-        && (0..nf).into_par_iter().with_min_len(1 << 12).all(|f| {
-            (dag.out_start[f] as usize..dag.out_start[f + 1] as usize).all(|a| {
-                let (lo, hi) = (starts[a] as usize, starts[a + 1] as usize);
-                let d = dag.arc_destroyer[a];
-                lo < hi && hi <= creator.len() && is(lo, f, d) && is(hi - 1, f, d)
-            })
-        })
-}
-
 /// A tet's arc, as one sortable number: creator, then destroyer.
 #[inline]
 fn arc_key(creator: &[FragmentId], destroyer: &[FragmentId], t: usize) -> u64 {
@@ -537,16 +556,14 @@ fn arc_of(creator: FragmentId, destroyer: FragmentId) -> u64 {
     (creator.0 as u64) << 32 | destroyer.0 as u64
 }
 
-/// Tets per block of [`Merge::plan`]'s order check (blocks are checked in parallel).
-const ORDER_BLOCK: u32 = 1 << 15;
-
 /// The reordering [`OpenMt::close`] makes when most of the pool is still in arc order
 /// (an edit changes a small part of it): the tets an edit may have moved (relabelled, or
-/// appended) are sorted alone, and the others, checked to be still in order, are merged
-/// with them in place, each moved tet placed by a search among the others (no pass over
-/// the pool beyond the check). The result is the stable sort of the whole pool by arc,
-/// whatever the hint said; each element moves at most twice, and only the moved ones are
-/// copied aside (a fresh copy of a pool of millions of tets is mostly page faults).
+/// appended) are sorted alone, and merged in place with the others — still in the opened
+/// MT's arc order, as nothing changes a creator or destroyer without listing the tet —
+/// each moved tet placed by a search among the others (the others are not read beyond
+/// that search: no pass over the pool). The result is the stable sort of the whole pool
+/// by arc; each element moves at most twice, and only the moved ones are copied aside (a
+/// fresh copy of a pool of millions of tets is mostly page faults).
 struct Merge {
     /// The moved tets by index, ascending.
     by_index: Vec<u32>,
@@ -557,7 +574,9 @@ struct Merge {
 }
 
 impl Merge {
-    /// `None` when most of the pool moved, or the tets not said to move are out of order.
+    /// `None` when most of the pool moved. `relabelled`: every tet below `opened_sorted`
+    /// whose creator or destroyer changed (the tets from `opened_sorted` on count as
+    /// moved); the tets below it were in arc order when opened.
     fn plan(
         creator: &[FragmentId],
         destroyer: &[FragmentId],
@@ -580,9 +599,7 @@ impl Merge {
         let key = |t: u32| (arc_key(creator, destroyer, t as usize), t);
         let mut keyed: Vec<(u64, u32)> = by_index.iter().map(|&t| key(t)).collect();
         keyed.par_sort_unstable();
-        // The others, as runs between moved tets: each run in order and each run's last
-        // tet before the next run's first, checked in blocks on both cores (a pass over
-        // the pool's arcs, but no more).
+        // The others, as runs between moved tets.
         let mut runs: Vec<(u32, u32)> = Vec::new();
         let mut start = 0u32;
         for end in by_index.iter().copied().chain(std::iter::once(nt as u32)) {
@@ -591,25 +608,12 @@ impl Merge {
             }
             start = end + 1;
         }
-        let in_order = runs
-            .par_iter()
-            .flat_map_iter(|&(a, b)| (a..b).step_by(ORDER_BLOCK as usize).map(move |s| (a, s, b)))
-            .all(|(a, s, b)| {
-                // A block's first tet follows the one before it in its run.
-                let (lo, hi) = (
-                    if s == a { s } else { s - 1 } as usize,
-                    (s + ORDER_BLOCK).min(b) as usize,
-                );
-                let mut keys =
-                    (creator[lo..hi].iter().zip(&destroyer[lo..hi])).map(|(&c, &d)| arc_of(c, d));
-                let first = keys.next().unwrap_or(0);
-                keys.try_fold(first, |prev, k| (prev <= k).then_some(k))
-                    .is_some()
-            })
-            && runs.windows(2).all(|w| key(w[0].1 - 1) <= key(w[1].0));
-        if !in_order {
-            return None;
-        }
+        debug_assert!(
+            runs.iter()
+                .all(|&(a, b)| (a + 1..b).all(|t| key(t - 1).0 <= key(t).0))
+                && runs.windows(2).all(|w| key(w[0].1 - 1) <= key(w[1].0)),
+            "a tet not listed as relabelled is out of arc order"
+        );
         // Each moved tet goes after the others before it in order: the first of them not
         // before it is found by galloping from where the moved tet before it went, then
         // bisecting (the next run's first tet stands for the moved ones a probe lands on).
@@ -778,9 +782,9 @@ mod tests {
         }
     }
 
-    /// One round of [`merge_is_the_stable_sort_whatever_the_hint`]: a pool of `n` tets in
-    /// arc order (`arcs` distinct creators; ties are common), up to `edits` of them
-    /// relabelled (said or not, and a lie now and then) and up to `edits` appended. Whether
+    /// One round of [`merge_is_the_stable_sort`]: a pool of `n` tets in arc order (`arcs`
+    /// distinct creators; ties are common), up to `edits` of them relabelled (listed, some
+    /// twice, and now and then to the arc they had) and up to `edits` appended. Whether
     /// the in-place path was taken.
     fn merge_round(
         rand: &mut impl FnMut(u64) -> u64,
@@ -796,17 +800,16 @@ mod tests {
         let mut said: Vec<u32> = Vec::new();
         for _ in 0..rand(1 + edits as u64) {
             let t = rand(n as u64) as usize;
-            keys[t] = (rand(arcs + 2) as u32, rand(8) as u32);
-            if round % 5 != 0 {
+            if round % 7 != 0 {
+                keys[t] = (rand(arcs + 2) as u32, rand(8) as u32);
+            }
+            said.push(t as u32);
+            if round % 3 == 0 {
                 said.push(t as u32);
             }
         }
         for _ in 0..rand(1 + edits as u64 * 4 / 5) {
             keys.push((rand(arcs + 2) as u32, rand(8) as u32));
-        }
-        if round % 7 == 0 && !keys.is_empty() {
-            // A lie: a tet said moved that did not.
-            said.push(rand(n as u64) as u32);
         }
         let creator: Vec<FragmentId> = keys.iter().map(|k| FragmentId(k.0)).collect();
         let destroyer: Vec<FragmentId> = keys.iter().map(|k| FragmentId(k.1)).collect();
@@ -831,11 +834,10 @@ mod tests {
         true
     }
 
-    /// The in-place reordering is the stable sort by arc, whatever the hint says: small
-    /// pools, and pools large enough that the order check and the placement of the moved
-    /// tets run in several blocks.
+    /// The in-place reordering is the stable sort by arc: small pools, and pools large
+    /// enough that the placement of the moved tets runs in several blocks.
     #[test]
-    fn merge_is_the_stable_sort_whatever_the_hint() {
+    fn merge_is_the_stable_sort() {
         let mut rand = xorshift(0x9e37_79b9_7f4a_7c15);
         let merged = (0..300)
             .filter(|&round| {
@@ -855,22 +857,73 @@ mod tests {
             merged > 4,
             "only {merged} large rounds took the in-place path"
         );
-        // A tet out of order, not said to move, where an order-check block begins (blocks
-        // start at the runs' starts: the run after tet 7 starts at 8).
-        let n = 3 * ORDER_BLOCK as usize;
-        let creator: Vec<FragmentId> = (0..n).map(|t| FragmentId(t as u32 / 64)).collect();
-        let destroyer = vec![FragmentId(u32::MAX); n];
-        let mut lied = creator.clone();
-        lied[8 + ORDER_BLOCK as usize] = FragmentId(0);
-        assert!(Merge::plan(&creator, &destroyer, n, &[7]).is_some());
-        assert!(Merge::plan(&lied, &destroyer, n, &[7]).is_none());
     }
 
-    /// Arc ranges updated from the moved tets, once checked against the pool, are the arcs
-    /// a scan of the reordered pool finds, whatever the hint says; edits that make a new
-    /// arc or empty one are not kept.
+    /// Creators and destroyers change only through the setters, which list the tets for
+    /// closing: an MT opened, relabelled and appended to, then closed, has its pool in arc
+    /// order, the same as a full sort of it.
     #[test]
-    fn kept_arcs_are_the_scanned_arcs_whatever_the_hint() {
+    fn setters_list_what_closing_merges() {
+        let mut rand = xorshift(0x5851_f42d_4c95_7f2d);
+        let n = 400;
+        let mut keys: Vec<(u32, u32)> = (0..n)
+            .map(|_| (rand(5) as u32, 5 + rand(3) as u32))
+            .collect();
+        keys.sort();
+        let tet = |t: usize| [VertexId(t as u32); 4];
+        let mut open = OpenMt {
+            positions: Vec::new(),
+            point_data: Attributes::default(),
+            tets: (0..n).map(tet).collect(),
+            cell_data: Attributes::default(),
+            creator: keys.iter().map(|k| FragmentId(k.0)).collect(),
+            destroyer: keys.iter().map(|k| FragmentId(k.1)).collect(),
+            kind: Vec::new(),
+            error: Vec::new(),
+            info: MtInfo {
+                error_metric: String::new(),
+                boundary_tolerance: 0.0,
+                preserve_features: false,
+                feature_angle_degrees: 0.0,
+                input_tets: n,
+                cuts: crate::mt::CutHistory::new(0),
+            },
+            opened_sorted: n,
+            relabelled: Vec::new(),
+            changed_fragments: None,
+            written_tets: None,
+            boxes: None,
+            dag: None,
+            opened_arcs: None,
+        };
+        for _ in 0..20 {
+            let t = rand(n as u64) as usize;
+            open.set_creator(t, FragmentId(rand(5) as u32));
+            open.set_destroyer(t, FragmentId(5 + rand(3) as u32));
+        }
+        open.push_tet(tet(n), FragmentId(2), FragmentId(6));
+        let mut expected: Vec<usize> = (0..=n).collect();
+        expected.sort_by_key(|&t| (open.creator[t], open.destroyer[t]));
+        let m = Merge::plan(&open.creator, &open.destroyer, n, open.relabelled())
+            .expect("a small edit is merged in place");
+        let mut ids: Vec<Tet> = open.tets.clone();
+        m.apply(&mut ids, 1);
+        assert_eq!(ids, expected.iter().map(|&t| tet(t)).collect::<Vec<_>>());
+        open.truncate_tets(n);
+        assert_eq!(
+            (
+                open.tets.len(),
+                open.creator().len(),
+                open.destroyer().len()
+            ),
+            (n, n, n)
+        );
+    }
+
+    /// Arc ranges updated from the moved tets are the arcs a scan of the reordered pool
+    /// finds; edits that make a new arc or empty one are not kept.
+    #[test]
+    fn kept_arcs_are_the_scanned_arcs() {
         let mut rand = xorshift(0x2545_f491_4f6c_dd1d);
         let (mut kept, mut refused) = (0, 0);
         for round in 0..400 {
@@ -901,7 +954,7 @@ mod tests {
                 preds: Default::default(),
                 level: vec![0; nf],
             };
-            // Edits: mostly into arcs the pool has (a new one now and then), said or not.
+            // Edits: mostly into arcs the pool has (a new one now and then).
             let existing = keys.clone();
             let pick = |rand: &mut dyn FnMut(u64) -> u64| {
                 if rand(10) == 0 {
@@ -914,9 +967,7 @@ mod tests {
             for _ in 0..rand(1 + n as u64 / 8) {
                 let t = rand(n as u64) as usize;
                 keys[t] = pick(&mut rand);
-                if round % 5 != 0 {
-                    said.push(t as u32);
-                }
+                said.push(t as u32);
             }
             for _ in 0..rand(1 + n as u64 / 6) {
                 keys.push(pick(&mut rand));
@@ -928,7 +979,7 @@ mod tests {
             let starts = m.kept_arcs(&creator, &destroyer, n, &dag, starts);
             m.apply(&mut creator, 1);
             m.apply(&mut destroyer, 1);
-            match starts.filter(|s| arcs_hold(s, &dag, &creator, &destroyer)) {
+            match starts {
                 Some(s) => {
                     kept += 1;
                     let (scanned, sc, sd) = arcs_of(&creator, &destroyer);
@@ -936,9 +987,8 @@ mod tests {
                     assert_eq!(sd, dag.arc_destroyer, "round {round}");
                     assert_eq!(sc.len(), dag.arc_destroyer.len());
                 }
-                // With every edit said, ranges are refused only for other arcs (a tet
-                // relabelled unsaid may make them refused: safe, the pool is scanned).
-                None if round % 5 != 0 => {
+                // Ranges are refused only for other arcs.
+                None => {
                     refused += 1;
                     let (_, sc, sd) = arcs_of(&creator, &destroyer);
                     let same = sd == dag.arc_destroyer
@@ -949,7 +999,6 @@ mod tests {
                         });
                     assert!(!same, "round {round}: the same arcs, not kept");
                 }
-                None => {}
             }
         }
         assert!(kept > 100 && refused > 20, "kept {kept}, refused {refused}");
