@@ -7,9 +7,11 @@
 //! plane, in the same run; and, apart, the time to make the cutter (`MtCutter::new`: vertex
 //! scales, the fragments earlier cuts left cracked, the hierarchy over fragments, the open
 //! form's per-tet links, room in the pool), paid once per cutter, not per cut. Then a
-//! linear fit of total time against input cells, one cut on the fandisk-1m MT cutting
-//! about as many cells as fandisk's middle cut, and a second one continuing it on the same
-//! cutter (a blade's next step).
+//! linear fit of total time against input cells, one cut on the fandisk-1m MT scaled from
+//! fandisk's middle cut by the ratio of mean edge lengths (its MT having more levels, it
+//! cuts about twice the cells), one sized to cut as many cells as fandisk's middle cut
+//! (found by trial cuts, rescaling the square by the square root of the ratio of cells), and
+//! a second cut continuing the first on the same cutter (a blade's next step).
 //!
 //! `cargo bench --bench table2 -- [LARGE_DIR]` (default /work/large; the 1m row is skipped
 //! with a note when `LARGE_DIR/fandisk-1m.node` is missing). Prints one JSON object on
@@ -82,6 +84,31 @@ fn time_cut(
         s,
         [median(prepare), median(split), median(dag), median(total)],
     ))
+}
+
+/// The square of `normal`'s plane through `origin` cutting about `want` input cells on
+/// `mt` (within 5 %, after at most four trial cuts, each rescaling the half-size by the
+/// square root of the ratio of cells: cells grow with the area cut), starting from
+/// half-size `r`, which cut `got`; its half-size and [`time_cut`]'s statistics and times.
+fn same_cells(
+    mt: &Mt,
+    origin: DVec3,
+    normal: DVec3,
+    mut r: f64,
+    mut got: usize,
+    want: usize,
+) -> Result<(f64, MtCutStats, [f64; 4]), String> {
+    for _ in 0..4 {
+        if got.abs_diff(want) * 20 <= want {
+            break;
+        }
+        r *= (want as f64 / got.max(1) as f64).sqrt();
+        got = time_cut(mt, None, &square(origin, normal, r), 1)?
+            .0
+            .tets_cut;
+    }
+    let (s, times) = time_cut(mt, None, &square(origin, normal, r), 3)?;
+    Ok((r, s, times))
 }
 
 fn vtk_clip_ms(base: &Path, origin: DVec3, normal: DVec3, root: &Path) -> Result<f64, String> {
@@ -260,6 +287,29 @@ fn main() {
                                 "per_cell_ratio_over_fandisk":
                                     (total / s.tets_cut.max(1) as f64) / (ms / cells.max(1) as f64),
                             });
+                            match same_cells(&mt, origin, normal, r, s.tets_cut, cells) {
+                                Ok((size, c, [_, split, dag, total])) => {
+                                    let size = size / mesh.bbox().diagonal();
+                                    md.push_str(&format!(
+                                        "| fandisk-1m | {size:.4} | {} | {} | {} | {} | {:.3} | \
+                                         {split:.1} | {dag:.1} | {total:.1} | – | – |\n",
+                                        c.fragments_involved,
+                                        c.tets_cut,
+                                        c.tets_created_1_17,
+                                        c.tets_created,
+                                        c.tets_created as f64 / c.tets_created_1_17.max(1) as f64
+                                    ));
+                                    large_row["same_cells"] = json!({
+                                        "size_diagonals": size,
+                                        "input_cells": c.tets_cut,
+                                        "split_ms": split,
+                                        "dag_ms": dag,
+                                        "total_ms": total,
+                                        "ratio_over_fandisk": total / ms,
+                                    });
+                                }
+                                Err(e) => errors.push(format!("fandisk-1m, same cells: {e}")),
+                            }
                             match time_cut(&mt, Some(&polygon), &next, 3) {
                                 Ok((n, [_, split, dag, next_total])) => {
                                     next_line = format!(

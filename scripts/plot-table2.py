@@ -27,7 +27,9 @@ def main():
             ax.plot([p[0] for p in pts], [p[1] for p in pts], marker, label=mesh)
     big = data.get("fandisk_1m")
     if big:
-        ax.plot([big["input_cells"]], [big["total_ms"]], "x", color="k", label="fandisk-1m")
+        pts = [big] + ([big["same_cells"]] if "same_cells" in big else [])
+        ax.plot([p["input_cells"] for p in pts], [p["total_ms"] for p in pts], "x", color="k",
+                label="fandisk-1m")
     fitv = data["fit_total_ms_vs_cells"]
     xs = [r["input_cells"] for r in rows]
     if xs:
