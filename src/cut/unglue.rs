@@ -692,6 +692,16 @@ impl FaceTable {
 }
 
 impl Copies {
+    /// The copies of consecutive runs of vertices, planned apart, as one plan.
+    pub fn concat(parts: Vec<Copies>) -> Copies {
+        let mut all = Copies::default();
+        for part in parts {
+            all.groups.extend(part.groups);
+            all.pinched.extend(part.pinched);
+        }
+        all
+    }
+
     /// These copies with the plans of the vertices in `redone` (sorted) replaced by
     /// `update`'s, still in vertex order.
     pub fn merge(self, redone: &[VertexId], update: Copies) -> Copies {
