@@ -36,18 +36,13 @@ pub struct OpenMt {
     pub tets: Vec<Tet>,
     pub cell_data: Attributes,
     /// Creator and destroyer of each tet: read with [`creator`](Self::creator) and
-    /// [`destroyer`](Self::destroyer), changed only through the methods that keep
-    /// `relabelled` complete.
+    /// [`destroyer`](Self::destroyer), changed only through the setters, which list the
+    /// tets they relabel (`Opened::relabelled`).
     creator: Vec<FragmentId>,
     destroyer: Vec<FragmentId>,
     pub kind: Vec<FragmentKind>,
     pub error: Vec<f64>,
     pub info: MtInfo,
-    /// How many leading tets were in arc order when the MT was opened (0: unknown).
-    opened_sorted: usize,
-    /// Every tet below `opened_sorted` whose creator or destroyer was set since opening
-    /// (repeats allowed): the tets not listed are where the opened MT's arcs had them.
-    relabelled: Vec<u32>,
     /// Fragments whose box an edit may have changed, when the editor keeps count (`None`:
     /// unknown, every fragment box is derived again when closing). Fragments added count
     /// without being listed; any other fragment keeps the box it had when opened, so an
@@ -56,20 +51,32 @@ pub struct OpenMt {
     /// by tets that tile it, as a cut does, keeps the box: each corner of the tet is a
     /// corner of one of them.
     pub changed_fragments: Option<Vec<u32>>,
-    /// Tets below `opened_sorted` an edit wrote in place (their indices when opened), when
+    /// Tets of the opened MT's pool an edit wrote in place (their indices when opened), when
     /// the editor keeps count (`None`: unknown). Closing checks that every tet names
     /// vertices of the pool: only these and the tets appended when listed (the others
     /// were checked when the opened MT was assembled), else every tet of the pool — a
     /// pass over it that costs a large MT's small edit more than the edit (27 ms for 3.8 M
     /// tets, measured on a cut of the fandisk-1m MT).
     pub written_tets: Option<Vec<u32>>,
+    opened: Opened,
+}
+
+/// What an [`OpenMt`] knows of the MT it was opened from: nothing for one made of parts
+/// (closing then sorts the whole pool and derives everything).
+#[derive(Clone, Debug, Default)]
+struct Opened {
+    /// How many leading tets were in arc order when the MT was opened (0: unknown).
+    sorted: usize,
+    /// Every tet below `sorted` whose creator or destroyer was set since opening (repeats
+    /// allowed): the tets not listed are where the opened MT's arcs had them.
+    relabelled: Vec<u32>,
     /// The fragment boxes when opened.
     boxes: Option<(BoxFrame, Vec<QuantBox>)>,
     /// The DAG tables when opened (kept if the arcs are).
     dag: Option<KnownDag>,
     /// The arcs' tet ranges when opened (`arc_start`), updated in place by a close that
     /// keeps the arcs.
-    opened_arcs: Option<Vec<u32>>,
+    arcs: Option<Vec<u32>>,
 }
 
 /// The room an edit of a pool of `n` elements is given to append to it: an eighth more.
@@ -149,18 +156,20 @@ impl Mt {
             kind: self.kind,
             error: self.error,
             info: self.info,
-            opened_sorted: nt,
-            relabelled: Vec::new(),
             changed_fragments: None,
             written_tets: None,
-            boxes: Some((self.frame, self.bbox)),
-            dag: Some(KnownDag {
-                out_start: self.out_start,
-                arc_destroyer: self.arc_destroyer,
-                preds: self.preds,
-                level: self.level,
-            }),
-            opened_arcs: Some(self.arc_start),
+            opened: Opened {
+                sorted: nt,
+                relabelled: Vec::new(),
+                boxes: Some((self.frame, self.bbox)),
+                dag: Some(KnownDag {
+                    out_start: self.out_start,
+                    arc_destroyer: self.arc_destroyer,
+                    preds: self.preds,
+                    level: self.level,
+                }),
+                arcs: Some(self.arc_start),
+            },
         }
     }
 
@@ -284,13 +293,9 @@ impl Mt {
                 cuts: self.info.cuts.renumbered(&new_v),
                 ..self.info.clone()
             },
-            opened_sorted: 0,
-            relabelled: Vec::new(),
             changed_fragments: None,
             written_tets: None,
-            boxes: None,
-            dag: None,
-            opened_arcs: None,
+            opened: Opened::default(),
         };
         for &t in keep_t {
             let t = TetId::from_usize(t);
@@ -328,15 +333,15 @@ impl OpenMt {
     }
 
     fn note_relabelled(&mut self, t: usize) {
-        if t < self.opened_sorted {
-            self.relabelled.push(t as u32);
+        if t < self.opened.sorted {
+            self.opened.relabelled.push(t as u32);
         }
     }
 
     /// The tets below the opened MT's pool length whose creator or destroyer was set since
     /// it was opened (repeats allowed; the others are where its arcs had them).
     pub(crate) fn relabelled(&self) -> &[u32] {
-        &self.relabelled
+        &self.opened.relabelled
     }
 
     /// Appends `tet`, created by `creator` and destroyed by `destroyer` (its attribute
@@ -360,11 +365,11 @@ impl OpenMt {
     /// edit; [`restore_dag`](Self::restore_dag) gives them back for [`close`](Self::close)
     /// to reuse (else they are derived again). `None` for an MT not opened from one.
     pub(crate) fn take_dag(&mut self) -> Option<KnownDag> {
-        self.dag.take()
+        self.opened.dag.take()
     }
 
     pub(crate) fn restore_dag(&mut self, dag: KnownDag) {
-        self.dag = Some(dag);
+        self.opened.dag = Some(dag);
     }
 
     /// Sorts the pool into arcs (by creator, then destroyer, then current position: stable)
@@ -401,7 +406,7 @@ impl OpenMt {
         let written = this.written_tets.take();
         if let Some(written) = &written {
             let nv = this.positions.len();
-            let opened = this.opened_sorted.min(nt);
+            let opened = this.opened.sorted.min(nt);
             let tets = &this.tets;
             let listed = written.iter().map(|&t| t as usize).filter(|&t| t < opened);
             if let Some((t, v)) = listed
@@ -411,7 +416,7 @@ impl OpenMt {
                 return Err(format!("tet {t} uses vertex {v}, but the pool has {nv}"));
             }
         }
-        let known_boxes = match (this.boxes.take(), this.changed_fragments.take()) {
+        let known_boxes = match (this.opened.boxes.take(), this.changed_fragments.take()) {
             (Some((frame, boxes)), Some(listed)) => {
                 let mut changed = vec![false; boxes.len()];
                 for f in listed {
@@ -430,18 +435,18 @@ impl OpenMt {
         let merge = Merge::plan(
             &this.creator,
             &this.destroyer,
-            this.opened_sorted,
-            &this.relabelled,
+            this.opened.sorted,
+            &this.opened.relabelled,
         );
         // No fragment added, every moved tet joining an arc the opened MT had, none
         // emptied: the same arcs, their ranges updated from the moved tets alone (checked
         // below).
-        let kept_starts = match (&merge, &this.dag, this.opened_arcs.take()) {
+        let kept_starts = match (&merge, &this.opened.dag, this.opened.arcs.take()) {
             (Some(m), Some(dag), Some(starts)) if dag.level.len() == this.kind.len() => m
                 .kept_arcs(
                     &this.creator,
                     &this.destroyer,
-                    this.opened_sorted,
+                    this.opened.sorted,
                     dag,
                     starts,
                 ),
@@ -509,7 +514,7 @@ impl OpenMt {
             kind,
             error,
             info,
-            dag,
+            opened,
             ..
         } = this;
         let links = TetLinks { creator, destroyer };
@@ -526,7 +531,7 @@ impl OpenMt {
             info,
             known_boxes,
             keep_room: true,
-            kept_arcs: dag.filter(|_| arcs_kept),
+            kept_arcs: opened.dag.filter(|_| arcs_kept),
             vertex_ids_checked: written.is_some(),
         })
         .map(|mt| (mt, links))
@@ -900,13 +905,12 @@ mod tests {
                 input_tets: n,
                 cuts: crate::mt::CutHistory::new(0),
             },
-            opened_sorted: n,
-            relabelled: Vec::new(),
             changed_fragments: None,
             written_tets: None,
-            boxes: None,
-            dag: None,
-            opened_arcs: None,
+            opened: Opened {
+                sorted: n,
+                ..Opened::default()
+            },
         };
         for _ in 0..20 {
             let t = rand(n as u64) as usize;
