@@ -1167,11 +1167,15 @@ mtcut_status mtcut_mt_build(const struct mtcut_mesh *mesh,
  * whose polygon begins where the last one's crack ended, at an angle (a turning or
  * tilting blade moved call by call), continues that crack.
  *
- * The result is checked exhaustively (`Mt::validate`, linear in the model's size) before
- * it replaces the model: a cut the model refuses (some steps at steep angles to the last
- * crack, or turning near where an incision ending inside the body stops: a known limit)
- * or that would leave an invalid model gives `MTCUT_STATUS_INVALID_MESH` naming the
- * fragment or the first violation, and the model is unchanged. Frontiers made earlier keep extracting
+ * Before it keeps a cut, the cut checks the floor and ceiling of every fragment it
+ * changed and the orientation of every tet it made (what `Mt::validate` checks of them;
+ * the rest of the model it did not change): a cut the model refuses (some steps at
+ * steep angles to the last crack, or turning near where an incision ending inside the
+ * body stops: a known limit) gives `MTCUT_STATUS_INVALID_MESH` naming the fragment, and
+ * the model is unchanged. The first cut of a model prepares it for cutting (a cost
+ * linear in its size, kept in the handle for the next cuts); later cuts cost in
+ * proportion to what they change, unless frontiers made since the last cut still share
+ * the model (it is then copied). Frontiers made earlier keep extracting
  * from the model as it was when they were made. The two lips of a crack ending inside
  * the body are always extracted at the same resolution. After a cut straight through, a
  * focus extraction of the whole model may show the two bodies touching along the crack

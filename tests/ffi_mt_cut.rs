@@ -6,6 +6,7 @@
 //! `unsafe` here is the C caller's side of the contract; every call goes through the small
 //! wrappers below.
 
+mod blades;
 mod common;
 mod ffi_common;
 
@@ -1004,4 +1005,92 @@ fn a_model_cut_by_a_turning_blade_call_by_call_loses_its_corner() {
         assert_eq!(status, MTCUT_STATUS_OK, "step {k}: {}", last_error());
     }
     assert_eq!(mt_stats(&mt).components, 2, "the corner did not come off");
+}
+
+/// The model as `mtcut_mt_save` writes it.
+fn saved(mt: &Model, dir: &std::path::Path) -> Vec<u8> {
+    let path = dir.join("model.mt");
+    let c_path = CString::new(path.to_str().unwrap()).unwrap();
+    ok(unsafe { mtcut_mt_save(mt.0, c_path.as_ptr()) });
+    std::fs::read(path).unwrap()
+}
+
+/// A handle keeps what its first cut prepared for the next calls: a blade tilting across
+/// liver in 20 steps, cut one call per polygon, gives byte for byte the model one Rust
+/// `MtCutter` gives after each polygon — also when frontiers made between calls still share
+/// the model (a cut then works on a copy, each frontier keeps the model it was made from).
+/// The steps the model refuses (the known limit at steep angles, tests/mt_scalpel.rs) are
+/// refused alike, naming the fragment, the model byte for byte as before, and the next
+/// calls go on from there.
+#[test]
+fn a_model_keeps_its_cutter_between_calls() {
+    use mtcut::cut::{CutError, MtCutter};
+    let dir = common::scratch("ffi-mt-cutter");
+    let input = read("liver.node");
+    let mt = build(&input, None);
+    let rust = mtcut::mt::Mt::from_bytes(&saved(&mt, &dir)).expect("a saved model");
+    let mut cutter = MtCutter::new(rust, MtCutter::DEFAULT_OPTIONS).expect("options");
+    let b = mtcut::geom::Aabb::from_points(cutter.mt().positions());
+    let path: Vec<mtcut::cut::Blade> = (0..=20).map(|k| blades::tilting_in(&b, k, 20)).collect();
+    let tolerance = mtcut::geom::Tolerance { relative: 1e-9 };
+    let (mut refusals, mut frontiers) = (0, Vec::new());
+    for (k, w) in path.windows(2).enumerate() {
+        for polygon in mtcut::geom::scalpel_sweep(w[0], w[1], tolerance).expect("sweep") {
+            let corners: Vec<f64> = polygon.points().iter().flat_map(|p| p.to_array()).collect();
+            let before = saved(&mt, &dir);
+            let (status, s) = mt_cut(&mt, &corners);
+            match cutter.cut(&polygon) {
+                Ok(stats) => {
+                    assert_eq!(status, MTCUT_STATUS_OK, "step {k}: {}", last_error());
+                    assert_eq!(
+                        (s.tets_cut, s.components),
+                        (stats.tets_cut, stats.components)
+                    );
+                    assert_eq!(s.tets_after, mt_stats(&mt).tets, "step {k}");
+                }
+                Err(CutError::MtInconsistent { .. }) => {
+                    refused(
+                        status,
+                        MTCUT_STATUS_INVALID_MESH,
+                        "mtcut_mt_cut",
+                        "fragment",
+                    );
+                    assert!(
+                        saved(&mt, &dir) == before,
+                        "step {k}: the refused cut changed it"
+                    );
+                    refusals += 1;
+                }
+                Err(e) => panic!("step {k}: {e}"),
+            }
+            assert!(
+                saved(&mt, &dir) == cutter.mt().to_bytes(),
+                "step {k}: models differ"
+            );
+        }
+        if k % 4 == 1 {
+            let mut f = ptr::null_mut();
+            ok(unsafe { mtcut_frontier_new(mt.0, &extract_options(), &mut f) });
+            let f = Front(f);
+            let mesh = frontier_arrays(&f);
+            frontiers.push((f, mesh));
+        }
+    }
+    assert!(
+        refusals > 0,
+        "no step refused: this test needs another refused cut"
+    );
+    let report = cutter.mt().validate();
+    assert!(report.is_valid(), "{report}");
+    // Each frontier still extracts the model it was made from, as it was.
+    for (f, mesh) in &frontiers {
+        ok(unsafe { mtcut_frontier_update(f.0, &extract_options(), ptr::null_mut()) });
+        assert!(frontier_arrays(f) == *mesh, "a frontier saw a later cut");
+    }
+}
+
+fn frontier_arrays(f: &Front) -> (Vec<f64>, Vec<u32>) {
+    let mut out = ptr::null_mut();
+    ok(unsafe { mtcut_frontier_mesh(f.0, &mut out) });
+    arrays(&Mesh(out))
 }

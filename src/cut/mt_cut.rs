@@ -477,6 +477,25 @@ impl MtCutter {
         self.mt.expect("MtCutter holds its MT between cuts")
     }
 
+    /// Takes the MT out, the cutter keeping what it prepared for it, for a holder that
+    /// shares the MT between cuts (the C ABI's model handle, whose frontiers keep the
+    /// model as it was): the cutter cannot cut until [`put_mt`](Self::put_mt) gives it
+    /// back, or an exact copy of it.
+    pub(crate) fn take_mt(&mut self) -> Mt {
+        self.mt.take().expect("MtCutter holds its MT between cuts")
+    }
+
+    /// Gives back the MT [`take_mt`](Self::take_mt) took (or an exact copy of it).
+    pub(crate) fn put_mt(&mut self, mt: Mt) {
+        debug_assert!(self.mt.is_none(), "the cutter already holds an MT");
+        debug_assert_eq!(
+            mt.nb_fragments(),
+            self.split_off.len(),
+            "not the cutter's MT"
+        );
+        self.mt = Some(mt);
+    }
+
     pub fn options(&self) -> &CutOptions {
         &self.options
     }

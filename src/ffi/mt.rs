@@ -16,7 +16,7 @@ use crate::cut::{MtCutStats, MtCutter};
 use crate::geom::{Aabb, CutPolygon, DVec3};
 use crate::mt::{
     BoundaryError, BuildError, BuildOptions, ErrorMetric, ExtractError, ExtractOptions, Frontier,
-    Mt, MtFileError, MtFileErrorKind, Region,
+    GHOST, Mt, MtFileError, MtFileErrorKind, Region,
 };
 use std::ffi::{c_char, c_int, c_void};
 use std::mem::offset_of;
@@ -30,13 +30,35 @@ use std::sync::Arc;
 /// "mt_level" (the fragment that created each tet, its error and DAG level) and the point
 /// data "mt_vertex" (each vertex's id in the model), besides the input's own columns.
 pub struct mtcut_mt {
-    /// Shared with the frontiers made from it, which may outlive the handle.
-    mt: Arc<Mt>,
+    /// Shared with the frontiers made from it, which may outlive the handle. `None` only
+    /// when a cut panicked while it held the model.
+    mt: Option<Arc<Mt>>,
+    /// What the first `mtcut_mt_cut` prepared for cutting this model (vertex scales,
+    /// fragment hierarchy, per-tet links: linear in the model's size), kept for the next
+    /// ones without a model of its own: each cut lends it `mt`.
+    cutter: Option<MtCutter>,
+    /// The model's tets over all levels, ghosts left out (`tets_after` of a cut's
+    /// statistics): counted when a cut's statistics first ask for it (a pass over the
+    /// model), then kept by each cut's balance (tets created less tets replaced).
+    pool_tets: Option<usize>,
 }
 
 impl mtcut_mt {
     pub(super) fn boxed(mt: Mt) -> *mut mtcut_mt {
-        Box::into_raw(Box::new(mtcut_mt { mt: Arc::new(mt) }))
+        Box::into_raw(Box::new(mtcut_mt {
+            mt: Some(Arc::new(mt)),
+            cutter: None,
+            pool_tets: None,
+        }))
+    }
+
+    fn model(&self) -> FfiResult<&Arc<Mt>> {
+        self.mt.as_ref().ok_or_else(|| {
+            Failure::new(
+                MTCUT_STATUS_INTERNAL_PANIC,
+                "the model was lost by an internal panic in an earlier mtcut_mt_cut",
+            )
+        })
     }
 }
 
@@ -46,7 +68,7 @@ impl mtcut_mt {
 /// A non-NULL `mt` must be a live handle from this library.
 pub(super) unsafe fn mt_ref<'a>(mt: *const mtcut_mt) -> FfiResult<&'a Arc<Mt>> {
     // SAFETY: forwarded contract.
-    Ok(&unsafe { deref(mt, "mt") }?.mt)
+    unsafe { deref(mt, "mt") }?.model()
 }
 
 /// The per-tet error a build ranks simplification steps by (a `uint32_t`; other values are
@@ -210,7 +232,7 @@ pub unsafe extern "C" fn mtcut_mt_build(
         };
         let (mt, _) =
             Mt::build_with_progress(mesh, &build, &mut progress).map_err(build_failure)?;
-        out.write(Box::into_raw(Box::new(mtcut_mt { mt: Arc::new(mt) })));
+        out.write(mtcut_mt::boxed(mt));
         Ok(())
     })
 }
@@ -219,7 +241,7 @@ impl mtcut_cut_stats {
     /// A cut of the model in the plain-mesh statistics (the counts are over every level);
     /// `tets_after` and `vertices_after` are the model's, as `mtcut_mt_statistics` counts
     /// them (every level, no ghosts); the build and component times zero.
-    fn of_mt(s: &MtCutStats, mt: &Mt) -> mtcut_cut_stats {
+    fn of_mt(s: &MtCutStats, mt: &Mt, pool_tets: usize) -> mtcut_cut_stats {
         mtcut_cut_stats {
             struct_size: size_of::<mtcut_cut_stats>(),
             tets_tested: s.tets_tested,
@@ -231,7 +253,7 @@ impl mtcut_cut_stats {
             face_points: s.face_points,
             vertex_copies: s.vertex_copies,
             vertices_snapped: s.vertices_snapped,
-            tets_after: mt.summary().pool_tets,
+            tets_after: pool_tets,
             vertices_after: mt.nb_vertices(),
             components: s.components,
             seconds_build: 0.0,
@@ -253,11 +275,15 @@ impl mtcut_cut_stats {
 /// whose polygon begins where the last one's crack ended, at an angle (a turning or
 /// tilting blade moved call by call), continues that crack.
 ///
-/// The result is checked exhaustively (`Mt::validate`, linear in the model's size) before
-/// it replaces the model: a cut the model refuses (some steps at steep angles to the last
-/// crack, or turning near where an incision ending inside the body stops: a known limit)
-/// or that would leave an invalid model gives `MTCUT_STATUS_INVALID_MESH` naming the
-/// fragment or the first violation, and the model is unchanged. Frontiers made earlier keep extracting
+/// Before it keeps a cut, the cut checks the floor and ceiling of every fragment it
+/// changed and the orientation of every tet it made (what `Mt::validate` checks of them;
+/// the rest of the model it did not change): a cut the model refuses (some steps at
+/// steep angles to the last crack, or turning near where an incision ending inside the
+/// body stops: a known limit) gives `MTCUT_STATUS_INVALID_MESH` naming the fragment, and
+/// the model is unchanged. The first cut of a model prepares it for cutting (a cost
+/// linear in its size, kept in the handle for the next cuts); later cuts cost in
+/// proportion to what they change, unless frontiers made since the last cut still share
+/// the model (it is then copied). Frontiers made earlier keep extracting
 /// from the model as it was when they were made. The two lips of a crack ending inside
 /// the body are always extracted at the same resolution. After a cut straight through, a
 /// focus extraction of the whole model may show the two bodies touching along the crack
@@ -286,23 +312,35 @@ pub unsafe extern "C" fn mtcut_mt_cut(
         };
         let stats = stats.map(VersionedOut::new).transpose()?;
         let polygon = CutPolygon::new(&corners).map_err(|e| polygon_failure(e, "polygon_xyz"))?;
-        // The cut works on a copy, so a failure at any point leaves the caller's model
-        // (and the frontiers sharing it) as it was.
-        let mut cutter =
-            MtCutter::new(Mt::clone(&handle.mt), MtCutter::DEFAULT_OPTIONS).map_err(cut_failure)?;
-        let result = cutter.cut(&polygon).map_err(cut_failure)?;
-        let cut = cutter.into_mt();
-        let report = cut.validate();
-        if !report.is_valid() {
-            return Err(Failure::new(
-                MTCUT_STATUS_INVALID_MESH,
-                format!("the cut would leave the model invalid ({report}); the model is unchanged"),
-            ));
-        }
-        let c_stats = mtcut_cut_stats::of_mt(&result, &cut);
-        handle.mt = Arc::new(cut);
+        handle.model()?;
+        // The handle's model is lent to the cutter (copied if frontiers share it) and
+        // given back, cut or, when the cut is refused, byte for byte as it was. Only a
+        // panic inside the cut loses it (the handle then says so).
+        let shared = handle.mt.take().expect("checked above");
+        let model = Arc::try_unwrap(shared).unwrap_or_else(|shared| Mt::clone(&shared));
+        let mut cutter = match handle.cutter.take() {
+            Some(mut cutter) => {
+                cutter.put_mt(model);
+                cutter
+            }
+            None => MtCutter::new(model, MtCutter::DEFAULT_OPTIONS)
+                .expect("the default options are an MT cutter's"),
+        };
+        let result = cutter.cut(&polygon);
+        handle.mt = Some(Arc::new(cutter.take_mt()));
+        handle.cutter = Some(cutter);
+        let result = result.map_err(cut_failure)?;
+        let cut = Arc::clone(handle.model()?);
+        debug_assert!(cut.validate().is_valid(), "{}", cut.validate());
+        handle.pool_tets = handle
+            .pool_tets
+            .map(|n| n + result.tets_created - result.tets_cut);
         if let Some(out) = stats {
-            out.write(c_stats);
+            let pool_tets = *handle.pool_tets.get_or_insert_with(|| {
+                cut.nb_tets() - cut.tets().iter().filter(|t| t[3] == GHOST).count()
+            });
+            debug_assert_eq!(pool_tets, cut.summary().pool_tets);
+            out.write(mtcut_cut_stats::of_mt(&result, &cut, pool_tets));
         }
         Ok(())
     })
@@ -330,7 +368,7 @@ pub unsafe extern "C" fn mtcut_mt_component(
                 format!("argument `k`: component {k} asked for, the model has {n}"),
             )
         })?;
-        out.write(Box::into_raw(Box::new(mtcut_mt { mt: Arc::new(part) })));
+        out.write(mtcut_mt::boxed(part));
         Ok(())
     })
 }
@@ -379,7 +417,7 @@ pub unsafe extern "C" fn mtcut_mt_load(
         // SAFETY: the caller's contract, forwarded to the checks.
         let (path, out) = unsafe { (c_str(path, "path")?, Out::new(out, "out")?) };
         let mt = Mt::load(path_arg(path)?).map_err(file_failure)?;
-        out.write(Box::into_raw(Box::new(mtcut_mt { mt: Arc::new(mt) })));
+        out.write(mtcut_mt::boxed(mt));
         Ok(())
     })
 }
