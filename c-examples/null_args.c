@@ -518,6 +518,19 @@ static void check_mt(const mtcut_mesh *mesh, const char *dir) {
   EXPECT(mtcut_mt_cut(good, plane_xyz, 3, &st), MTCUT_STATUS_INVALID_ARGUMENT);
   UNTOUCHED(st.tets_cut == 0);
 
+  {
+    bool valid = false;
+    char message[16] = "untouched";
+    size_t length = 12345;
+    EXPECT(mtcut_mt_validate(NULL, &valid, message, sizeof message, &length),
+           MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_mt_validate(good, NULL, message, sizeof message, &length),
+           MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_mt_validate(good, &valid, NULL, sizeof message, &length),
+           MTCUT_STATUS_NULL_ARGUMENT);
+    UNTOUCHED(!valid && strcmp(message, "untouched") == 0 && length == 12345);
+  }
+
   EXPECT(mtcut_mt_component(NULL, 0, &mt), MTCUT_STATUS_NULL_ARGUMENT);
   EXPECT(mtcut_mt_component(good, 0, NULL), MTCUT_STATUS_NULL_ARGUMENT);
   EXPECT(mtcut_mt_component(good, 1, &mt), MTCUT_STATUS_NOT_FOUND);

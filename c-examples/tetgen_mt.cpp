@@ -267,6 +267,11 @@ int main(int argc, char **argv) {
     std::printf("model cut: %zu tets of all levels cut, %zu created, %zu components, %.3f ms\n",
                 mt_cut.tets_cut, mt_cut.tets_created, after.components, 1e3 * mt_cut.seconds_cut);
     verify(after.components == 2, "the model cut through is two models");
+    bool model_valid = false;
+    char report[64];
+    check(mtcut_mt_validate(mt.get(), &model_valid, report, sizeof report, nullptr),
+          "model validation");
+    verify(model_valid && std::strcmp(report, "valid MT") == 0, "the cut model is valid");
     check(mtcut_mt_extract_threshold(mt.get(), middle, &raw), "coarse level of the cut model");
     Mesh coarse_cut(raw);
     verify_valid(coarse_cut.get(), "coarse level of the cut model");

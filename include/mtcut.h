@@ -1193,6 +1193,29 @@ mtcut_status mtcut_mt_cut(struct mtcut_mt *mt,
                           struct mtcut_cut_stats *stats_or_null);
 
 /**
+ * Checks every invariant of the model (`Mt::validate`: the store's structure, the DAG
+ * acyclic with consistent levels and errors, every tet positively oriented, every
+ * fragment's floor and ceiling conforming with the same boundary, the finest and
+ * coarsest meshes valid): exhaustive, so linear-logarithmic in the model's size plus two
+ * extractions. Models are valid when built, loaded, and after every cut (each cut checks
+ * what it changed); this is the whole check, for a host's own tests or debug builds.
+ * `*valid` receives the verdict; the message ("valid MT", or "invalid MT: " and each
+ * violation with its count and first examples) is truncated like `snprintf` to
+ * `message_capacity` bytes with its NUL; `message_or_null` may be NULL (with
+ * `message_capacity` 0) to skip it. `*message_length_or_null`, if given, receives the
+ * full length without the NUL.
+ *
+ * # Safety
+ * `mt` must be a live model handle; `valid` writable; a non-NULL `message_or_null`
+ * writable for `message_capacity` bytes; a non-NULL `message_length_or_null` writable.
+ */
+mtcut_status mtcut_mt_validate(const struct mtcut_mt *mt,
+                               bool *valid,
+                               char *message_or_null,
+                               size_t message_capacity,
+                               size_t *message_length_or_null);
+
+/**
  * Component `k` (from 0; `mtcut_mt_statistics` counts them) of a model that cuts
  * separated into independent models, as a model of its own: `*out` receives a new
  * handle. `MTCUT_STATUS_NOT_FOUND` when `k` is not below the count.

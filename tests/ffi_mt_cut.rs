@@ -1082,6 +1082,15 @@ fn a_model_keeps_its_cutter_between_calls() {
     );
     let report = cutter.mt().validate();
     assert!(report.is_valid(), "{report}");
+    // The whole check through the C ABI, its message truncated like snprintf.
+    let (mut valid, mut len, mut buf) = (false, 0usize, [0 as std::ffi::c_char; 4]);
+    let buf_ptr = buf.as_mut_ptr();
+    ok(unsafe { mtcut_mt_validate(mt.0, &mut valid, buf_ptr, buf.len(), &mut len) });
+    let text = unsafe { CStr::from_ptr(buf.as_ptr()) }.to_str().unwrap();
+    assert!(
+        valid && text == "val" && len == "valid MT".len(),
+        "{valid} {text:?} {len}"
+    );
     // Each frontier still extracts the model it was made from, as it was.
     for (f, mesh) in &frontiers {
         ok(unsafe { mtcut_frontier_update(f.0, &extract_options(), ptr::null_mut()) });

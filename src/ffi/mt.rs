@@ -11,6 +11,7 @@ use super::status::{
     MTCUT_STATUS_INVALID_MESH, MTCUT_STATUS_IO_ERROR, MTCUT_STATUS_NOT_FOUND,
     MTCUT_STATUS_PARSE_ERROR, MTCUT_STATUS_UNSUPPORTED_FORMAT, mtcut_status,
 };
+use super::strings::StringOut;
 use super::versioned::{Versioned, VersionedOut, read_optional};
 use crate::cut::{MtCutStats, MtCutter};
 use crate::geom::{Aabb, CutPolygon, DVec3};
@@ -341,6 +342,50 @@ pub unsafe extern "C" fn mtcut_mt_cut(
             });
             debug_assert_eq!(pool_tets, cut.summary().pool_tets);
             out.write(mtcut_cut_stats::of_mt(&result, &cut, pool_tets));
+        }
+        Ok(())
+    })
+}
+
+/// Checks every invariant of the model (`Mt::validate`: the store's structure, the DAG
+/// acyclic with consistent levels and errors, every tet positively oriented, every
+/// fragment's floor and ceiling conforming with the same boundary, the finest and
+/// coarsest meshes valid): exhaustive, so linear-logarithmic in the model's size plus two
+/// extractions. Models are valid when built, loaded, and after every cut (each cut checks
+/// what it changed); this is the whole check, for a host's own tests or debug builds.
+/// `*valid` receives the verdict; the message ("valid MT", or "invalid MT: " and each
+/// violation with its count and first examples) is truncated like `snprintf` to
+/// `message_capacity` bytes with its NUL; `message_or_null` may be NULL (with
+/// `message_capacity` 0) to skip it. `*message_length_or_null`, if given, receives the
+/// full length without the NUL.
+///
+/// # Safety
+/// `mt` must be a live model handle; `valid` writable; a non-NULL `message_or_null`
+/// writable for `message_capacity` bytes; a non-NULL `message_length_or_null` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mtcut_mt_validate(
+    mt: *const mtcut_mt,
+    valid: *mut bool,
+    message_or_null: *mut c_char,
+    message_capacity: usize,
+    message_length_or_null: *mut usize,
+) -> mtcut_status {
+    run("mtcut_mt_validate", || {
+        // SAFETY: the caller's contract, forwarded to the checks.
+        let (mt, valid, message, length) = unsafe {
+            (
+                mt_ref(mt)?,
+                Out::new(valid, "valid")?,
+                StringOut::new(message_or_null, message_capacity, "message_or_null")?,
+                Out::optional(message_length_or_null, "message_length_or_null")?,
+            )
+        };
+        let report = mt.validate();
+        let text = report.to_string();
+        message.write_truncated(&text)?;
+        valid.write(report.is_valid());
+        if let Some(length) = length {
+            length.write(text.len());
         }
         Ok(())
     })
