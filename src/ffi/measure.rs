@@ -3,7 +3,7 @@
 
 use super::guard::{Out, run};
 use super::mesh::{mesh_ref, mtcut_mesh};
-use super::status::{Failure, mtcut_status};
+use super::status::{Failure, FfiResult, mtcut_status};
 use super::strings::StringOut;
 use super::versioned::{Versioned, VersionedOut};
 use crate::mesh::{Severity, TetId};
@@ -32,27 +32,58 @@ pub unsafe extern "C" fn mtcut_mesh_validate(
 ) -> mtcut_status {
     run("mtcut_mesh_validate", || {
         // SAFETY: the caller's contract, forwarded to the checks.
-        let (mesh, valid, message, length) = unsafe {
-            (
-                mesh_ref(mesh)?,
-                Out::new(valid, "valid")?,
-                StringOut::new(message_or_null, message_capacity, "message_or_null")?,
-                Out::optional(message_length_or_null, "message_length_or_null")?,
-            )
+        let mesh = unsafe { mesh_ref(mesh) }?;
+        let check = || {
+            let report = mesh.validate();
+            let mut text = report.to_string();
+            let warnings = report.lines(Severity::Warning);
+            if !warnings.is_empty() {
+                text = format!("{text}; warnings: {}", warnings.join("; "));
+            }
+            (report.is_valid(), text)
         };
-        let report = mesh.validate();
-        let mut text = report.to_string();
-        let warnings = report.lines(Severity::Warning);
-        if !warnings.is_empty() {
-            text = format!("{text}; warnings: {}", warnings.join("; "));
+        // SAFETY: as above.
+        unsafe {
+            write_verdict(
+                valid,
+                message_or_null,
+                message_capacity,
+                message_length_or_null,
+                check,
+            )
         }
-        message.write_truncated(&text)?;
-        valid.write(report.is_valid());
-        if let Some(length) = length {
-            length.write(text.len());
-        }
-        Ok(())
     })
+}
+
+/// The outputs of a `*_validate` function, checked before anything is computed: `check`
+/// (the verdict and its message) runs only when they are good; the message is truncated
+/// like `snprintf` and its full length written when asked for.
+///
+/// # Safety
+/// `valid` writable; a non-NULL `message_or_null` writable for `message_capacity` bytes; a
+/// non-NULL `message_length_or_null` writable.
+pub(super) unsafe fn write_verdict(
+    valid: *mut bool,
+    message_or_null: *mut c_char,
+    message_capacity: usize,
+    message_length_or_null: *mut usize,
+    check: impl FnOnce() -> (bool, String),
+) -> FfiResult<()> {
+    // SAFETY: the caller's contract, forwarded to the checks.
+    let (valid, message, length) = unsafe {
+        (
+            Out::new(valid, "valid")?,
+            StringOut::new(message_or_null, message_capacity, "message_or_null")?,
+            Out::optional(message_length_or_null, "message_length_or_null")?,
+        )
+    };
+    let (verdict, text) = check();
+    message.write_truncated(&text)?;
+    valid.write(verdict);
+    if let Some(length) = length {
+        length.write(text.len());
+    }
+    Ok(())
 }
 
 /// Total volume (the sum of the tets' volumes) into `*volume`.

@@ -5,13 +5,13 @@
 
 use super::cut::{cut_failure, mtcut_cut_stats, points, polygon_failure};
 use super::guard::{Out, c_str, deref, deref_mut, run, run_count};
+use super::measure::write_verdict;
 use super::mesh::{mesh_ref, mtcut_mesh, path_arg};
 use super::status::{
     Failure, FfiResult, MTCUT_STATUS_CANCELLED, MTCUT_STATUS_INTERNAL_PANIC,
     MTCUT_STATUS_INVALID_MESH, MTCUT_STATUS_IO_ERROR, MTCUT_STATUS_NOT_FOUND,
     MTCUT_STATUS_PARSE_ERROR, MTCUT_STATUS_UNSUPPORTED_FORMAT, mtcut_status,
 };
-use super::strings::StringOut;
 use super::versioned::{Versioned, VersionedOut, read_optional};
 use crate::cut::{MtCutStats, MtCutter};
 use crate::geom::{Aabb, CutPolygon, DVec3};
@@ -372,22 +372,21 @@ pub unsafe extern "C" fn mtcut_mt_validate(
 ) -> mtcut_status {
     run("mtcut_mt_validate", || {
         // SAFETY: the caller's contract, forwarded to the checks.
-        let (mt, valid, message, length) = unsafe {
-            (
-                mt_ref(mt)?,
-                Out::new(valid, "valid")?,
-                StringOut::new(message_or_null, message_capacity, "message_or_null")?,
-                Out::optional(message_length_or_null, "message_length_or_null")?,
-            )
+        let mt = unsafe { mt_ref(mt) }?;
+        let check = || {
+            let report = mt.validate();
+            (report.is_valid(), report.to_string())
         };
-        let report = mt.validate();
-        let text = report.to_string();
-        message.write_truncated(&text)?;
-        valid.write(report.is_valid());
-        if let Some(length) = length {
-            length.write(text.len());
+        // SAFETY: as above.
+        unsafe {
+            write_verdict(
+                valid,
+                message_or_null,
+                message_capacity,
+                message_length_or_null,
+                check,
+            )
         }
-        Ok(())
     })
 }
 
