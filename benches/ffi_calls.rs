@@ -2,15 +2,16 @@
 //! polygons in the same run: the model of fandisk (and of fandisk-1m when its mesh is
 //! found) is loaded through the C ABI and cut by [`CALLS`] small squares, one call each,
 //! moving across the body; the same squares cut one [`MtCutter`] made of the same model.
-//! The first call prepares the model for cutting (kept in the handle for the next calls),
-//! as [`MtCutter::new`] does, so it is reported apart.
+//! Each call asks for the cut's statistics (and must cut the cells the Rust cut does). The
+//! first call prepares the model for cutting (kept in the handle for the next calls), as
+//! [`MtCutter::new`] does, so it is reported apart.
 //!
 //! `cargo bench --bench ffi_calls -- [LARGE_DIR]` (default /work/large; fandisk-1m is
 //! skipped with a note when `LARGE_DIR/fandisk-1m.node` is missing). Prints one JSON object
 //! on stdout.
 
 use mtcut::cut::MtCutter;
-use mtcut::ffi::{MTCUT_STATUS_OK, mtcut_mt_cut, mtcut_mt_free, mtcut_mt_load};
+use mtcut::ffi::{MTCUT_STATUS_OK, mtcut_cut_stats, mtcut_mt_cut, mtcut_mt_free, mtcut_mt_load};
 use mtcut::geom::{Aabb, CutPolygon, DVec3};
 use mtcut::mt::{BuildOptions, Mt};
 use serde_json::{Value, json};
@@ -57,14 +58,20 @@ fn measure(name: &str, mt: Mt, scratch: &Path) -> Value {
         unsafe { mtcut_mt_load(c_path.as_ptr(), &mut handle) },
         MTCUT_STATUS_OK
     );
-    let mut calls = Vec::new();
+    // Each call asks for the cut's statistics, as a host reporting them would.
+    let (mut calls, mut c_cells) = (Vec::new(), Vec::new());
     for square in &squares {
         let xyz: Vec<f64> = square.iter().flat_map(|p| p.to_array()).collect();
+        let mut stats = mtcut_cut_stats {
+            struct_size: size_of::<mtcut_cut_stats>(),
+            ..Default::default()
+        };
         let t = Instant::now();
-        // SAFETY: a live handle, 3 x 4 readable doubles, no stats.
-        let status = unsafe { mtcut_mt_cut(handle, xyz.as_ptr(), 4, std::ptr::null_mut()) };
+        // SAFETY: a live handle, 3 x 4 readable doubles, a writable sized stats struct.
+        let status = unsafe { mtcut_mt_cut(handle, xyz.as_ptr(), 4, &mut stats) };
         calls.push(t.elapsed().as_secs_f64() * 1e3);
         assert_eq!(status, MTCUT_STATUS_OK);
+        c_cells.push(stats.tets_cut);
     }
     // SAFETY: the live handle, not used after.
     unsafe { mtcut_mt_free(handle) };
@@ -81,6 +88,10 @@ fn measure(name: &str, mt: Mt, scratch: &Path) -> Value {
         rust.push(t.elapsed().as_secs_f64() * 1e3);
         cells.push(stats.tets_cut);
     }
+    assert_eq!(
+        c_cells, cells,
+        "{name}: the C calls cut other cells than the Rust cut"
+    );
     let later = median(calls[1..].to_vec());
     let rust_median = median(rust.clone());
     eprintln!(
