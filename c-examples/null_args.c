@@ -537,6 +537,22 @@ static void check_mt(const mtcut_mesh *mesh, const char *dir) {
   EXPECT(mtcut_mt_component(good, SIZE_MAX, &mt), MTCUT_STATUS_NOT_FOUND);
   UNTOUCHED(mt == mt_sentinel);
 
+  {
+    const double lo[3] = {-1, -1, -1}, hi[3] = {0.5, 2, 2}, nan_lo[3] = {NAN, -1, -1};
+    EXPECT(mtcut_mt_roi_box(NULL, lo, hi, &mt), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_mt_roi_box(good, NULL, hi, &mt), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_mt_roi_box(good, lo, NULL, &mt), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_mt_roi_box(good, lo, hi, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_mt_roi_box(good, nan_lo, hi, &mt), MTCUT_STATUS_INVALID_ARGUMENT);
+    EXPECT(mtcut_mt_roi_box(good, hi, lo, &mt), MTCUT_STATUS_INVALID_ARGUMENT);
+    EXPECT(mtcut_mt_roi_sphere(NULL, lo, 1.0, &mt), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_mt_roi_sphere(good, NULL, 1.0, &mt), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_mt_roi_sphere(good, lo, 1.0, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_mt_roi_sphere(good, lo, NAN, &mt), MTCUT_STATUS_INVALID_ARGUMENT);
+    EXPECT(mtcut_mt_roi_sphere(good, lo, 0.0, &mt), MTCUT_STATUS_INVALID_ARGUMENT);
+    UNTOUCHED(mt == mt_sentinel);
+  }
+
   EXPECT(mtcut_mt_extract_threshold(NULL, 0.0, &out), MTCUT_STATUS_NULL_ARGUMENT);
   EXPECT(mtcut_mt_extract_threshold(good, 0.0, NULL), MTCUT_STATUS_NULL_ARGUMENT);
   EXPECT(mtcut_mt_extract_threshold(good, -1.0, &out), MTCUT_STATUS_INVALID_ARGUMENT);

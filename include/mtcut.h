@@ -1228,6 +1228,45 @@ mtcut_status mtcut_mt_component(const struct mtcut_mt *mt,
                                 struct mtcut_mt **out);
 
 /**
+ * The sub-model of `mt` inside the axis-aligned box from `box_min` to `box_max` (three
+ * doubles each, every min below its max): a model of the region of interest with
+ * everything outside omitted (paper section 7). Every level of a copy of the model is cut
+ * along each face plane of the box that crosses the body, and the independent bodies
+ * lying inside are kept: a model of its own, roots and drains included, whose every
+ * extraction lies in the box; it is validated before it is returned. `mt` is not changed.
+ * On success `*out` receives a new handle. Errors: `MTCUT_STATUS_INVALID_ARGUMENT` for
+ * a box not finite, empty or flat, or not meeting the body (`*out` untouched);
+ * `MTCUT_STATUS_INVALID_MESH` when a plane's cut is refused (naming the plane and the
+ * fragment) or the sub-model fails its validation. Costs a copy of the model and a cut
+ * of every level per plane.
+ *
+ * # Safety
+ * `mt` must be a live model handle; `box_min` and `box_max` readable for three doubles
+ * each; `out` a writable pointer.
+ */
+mtcut_status mtcut_mt_roi_box(const struct mtcut_mt *mt,
+                              const double *box_min,
+                              const double *box_max,
+                              struct mtcut_mt **out);
+
+/**
+ * The sub-model of `mt` inside the sphere of centre `center` (three doubles) and radius
+ * `radius` (finite, > 0), as `mtcut_mt_roi_box` makes it for a box. The model is cut
+ * along the 14 planes of a polyhedron around the sphere (its bounding cube with the
+ * corners cut off at distance `radius` from the centre), so the sub-model also keeps
+ * what lies between the sphere and that polyhedron (at most 0.24 x `radius` beyond the
+ * sphere, where a cube face meets two corner planes). Errors as `mtcut_mt_roi_box`'s.
+ *
+ * # Safety
+ * `mt` must be a live model handle; `center` readable for three doubles; `out` a
+ * writable pointer.
+ */
+mtcut_status mtcut_mt_roi_sphere(const struct mtcut_mt *mt,
+                                 const double *center,
+                                 double radius,
+                                 struct mtcut_mt **out);
+
+/**
  * Writes the model to `path` in mtcut's binary `.mt` format (checksummed; any file name).
  * `MTCUT_STATUS_IO_ERROR` when the file cannot be written.
  *

@@ -1103,3 +1103,138 @@ fn frontier_arrays(f: &Front) -> (Vec<f64>, Vec<u32>) {
     ok(unsafe { mtcut_frontier_mesh(f.0, &mut out) });
     arrays(&Mesh(out))
 }
+
+/// `mtcut_mt_roi_box` and `mtcut_mt_roi_sphere` give the sub-model the Rust
+/// `region_of_interest` gives, byte for byte, valid, inside the region, the model they were
+/// given unchanged; bad regions are refused naming their arguments, `*out` untouched.
+#[test]
+fn a_region_of_interest_through_the_c_abi() {
+    use mtcut::cut::{RoiRegion, region_of_interest};
+    use mtcut::geom::{Aabb, DVec3};
+    let dir = common::scratch("ffi-mt-roi");
+    let input = read("pinion.node");
+    let mt = build(&input, None);
+    let before = saved(&mt, &dir);
+    let rust = mtcut::mt::Mt::from_bytes(&before).expect("a saved model");
+    let (mut lo, mut hi) = ([0.0; 3], [0.0; 3]);
+    ok(unsafe { mtcut_mesh_bounding_box(input.0, lo.as_mut_ptr(), hi.as_mut_ptr()) });
+    let at = |f: f64| -> [f64; 3] { std::array::from_fn(|i| lo[i] + f * (hi[i] - lo[i])) };
+    let (min, max) = (at(0.25), at(0.7));
+    let centre = at(0.5);
+    let radius = 0.3 * (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
+    let regions = [
+        RoiRegion::Box(Aabb {
+            min: DVec3::from_array(min),
+            max: DVec3::from_array(max),
+        }),
+        RoiRegion::Sphere {
+            center: DVec3::from_array(centre),
+            radius,
+        },
+    ];
+    for region in regions {
+        let mut out = ptr::null_mut();
+        ok(match region {
+            RoiRegion::Box(_) => unsafe {
+                mtcut_mt_roi_box(mt.0, min.as_ptr(), max.as_ptr(), &mut out)
+            },
+            RoiRegion::Sphere { .. } => unsafe {
+                mtcut_mt_roi_sphere(mt.0, centre.as_ptr(), radius, &mut out)
+            },
+        });
+        let sub = Model(out);
+        let (expected, stats) = region_of_interest(&rust, &region).expect("Rust sub-model");
+        assert!(
+            stats.planes_cut > 0 && stats.components_dropped > 0,
+            "{stats:?}"
+        );
+        assert!(
+            saved(&sub, &dir) == expected.to_bytes(),
+            "{region:?}: not the Rust sub-model"
+        );
+        let mut valid = false;
+        ok(unsafe { mtcut_mt_validate(sub.0, &mut valid, ptr::null_mut(), 0, ptr::null_mut()) });
+        assert!(valid, "{region:?}: the sub-model is not valid");
+        // Its finest mesh lies in the region (the sphere's: within the polyhedron around
+        // it, at most 1.24 radii from the centre), up to the cut's snapping.
+        let mut finest = ptr::null_mut();
+        ok(unsafe { mtcut_mt_extract_threshold(sub.0, 0.0, &mut finest) });
+        let finest = Mesh(finest);
+        assert_valid(&finest, "the sub-model's finest mesh");
+        let (xyz, _) = arrays(&finest);
+        let slack = 1e-6 * radius;
+        for p in xyz.chunks_exact(3).map(|p| DVec3::new(p[0], p[1], p[2])) {
+            let inside = match region {
+                RoiRegion::Box(b) => p.cmpge(b.min - slack).all() && p.cmple(b.max + slack).all(),
+                RoiRegion::Sphere { center, radius } => {
+                    p.distance(center) <= 1.2394 * radius + slack
+                }
+            };
+            assert!(inside, "{region:?}: vertex {p} outside the region");
+        }
+    }
+    assert!(saved(&mt, &dir) == before, "the model given changed");
+
+    // Bad regions: refused, naming the arguments, `*out` untouched.
+    let far = at(3.0);
+    let nan = [f64::NAN, 0.0, 0.0];
+    let boxes: [([f64; 3], [f64; 3], &str); 4] = [
+        (nan, max, "not finite"),
+        (min, min, "empty or flat"),
+        (max, min, "empty or flat"),
+        (far, at(4.0), "does not meet the body"),
+    ];
+    for (a, b, needle) in boxes {
+        let mut out = ptr::null_mut();
+        let status = unsafe { mtcut_mt_roi_box(mt.0, a.as_ptr(), b.as_ptr(), &mut out) };
+        refused(
+            status,
+            MTCUT_STATUS_INVALID_ARGUMENT,
+            "mtcut_mt_roi_box",
+            needle,
+        );
+        assert!(
+            last_error().contains("`box_min`, `box_max`"),
+            "{}",
+            last_error()
+        );
+        assert!(out.is_null());
+    }
+    let spheres: [([f64; 3], f64, &str); 4] = [
+        (centre, 0.0, "radius"),
+        (centre, -1.0, "radius"),
+        (centre, f64::NAN, "radius"),
+        (far, radius, "does not meet the body"),
+    ];
+    for (c, r, needle) in spheres {
+        let mut out = ptr::null_mut();
+        let status = unsafe { mtcut_mt_roi_sphere(mt.0, c.as_ptr(), r, &mut out) };
+        refused(
+            status,
+            MTCUT_STATUS_INVALID_ARGUMENT,
+            "mtcut_mt_roi_sphere",
+            needle,
+        );
+        assert!(out.is_null());
+    }
+    let mut out = ptr::null_mut();
+    let status = unsafe { mtcut_mt_roi_box(ptr::null(), min.as_ptr(), max.as_ptr(), &mut out) };
+    refused(
+        status,
+        MTCUT_STATUS_NULL_ARGUMENT,
+        "mtcut_mt_roi_box",
+        "`mt`",
+    );
+    let status = unsafe { mtcut_mt_roi_sphere(mt.0, ptr::null(), radius, &mut out) };
+    refused(
+        status,
+        MTCUT_STATUS_NULL_ARGUMENT,
+        "mtcut_mt_roi_sphere",
+        "`center`",
+    );
+    assert!(out.is_null());
+    assert!(
+        saved(&mt, &dir) == before,
+        "a refused region changed the model"
+    );
+}

@@ -14,8 +14,9 @@
 //! * A **sphere** is bounded by the 14 planes of a circumscribing polyhedron: the six
 //!   faces of its bounding cube and the eight planes at distance `r` normal to the cube's
 //!   diagonals (a truncated cube). The sub-MT holds everything inside the sphere and what
-//!   lies between the sphere and that polyhedron (at most `r (√3 - 1)` beyond the sphere,
-//!   near the truncated corners, `r (√2 - 1)`-ish along the cube's edges).
+//!   lies between the sphere and that polyhedron: at most 0.24 `r` beyond the sphere (the
+//!   polyhedron's farthest points, where a cube face meets two corner planes, such as
+//!   `(r, (√3 - 1) r, 0)` from the centre, lie 1.24 `r` from it).
 //!
 //! A component lies wholly on one side of every plane once all planes have cut: the test
 //! for "inside" is the centroid of any of its tets.

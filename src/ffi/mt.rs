@@ -13,7 +13,7 @@ use super::status::{
     MTCUT_STATUS_PARSE_ERROR, MTCUT_STATUS_UNSUPPORTED_FORMAT, mtcut_status,
 };
 use super::versioned::{Versioned, VersionedOut, read_optional};
-use crate::cut::{MtCutStats, MtCutter};
+use crate::cut::{MtCutStats, MtCutter, RoiError, RoiRegion, region_of_interest};
 use crate::geom::{Aabb, CutPolygon, DVec3};
 use crate::mt::{
     BoundaryError, BuildError, BuildOptions, ErrorMetric, ExtractError, ExtractOptions, Frontier,
@@ -415,6 +415,99 @@ pub unsafe extern "C" fn mtcut_mt_component(
         out.write(mtcut_mt::boxed(part));
         Ok(())
     })
+}
+
+/// The sub-model of `mt` inside the axis-aligned box from `box_min` to `box_max` (three
+/// doubles each, every min below its max): a model of the region of interest with
+/// everything outside omitted (paper section 7). Every level of a copy of the model is cut
+/// along each face plane of the box that crosses the body, and the independent bodies
+/// lying inside are kept: a model of its own, roots and drains included, whose every
+/// extraction lies in the box; it is validated before it is returned. `mt` is not changed.
+/// On success `*out` receives a new handle. Errors: `MTCUT_STATUS_INVALID_ARGUMENT` for
+/// a box not finite, empty or flat, or not meeting the body (`*out` untouched);
+/// `MTCUT_STATUS_INVALID_MESH` when a plane's cut is refused (naming the plane and the
+/// fragment) or the sub-model fails its validation. Costs a copy of the model and a cut
+/// of every level per plane.
+///
+/// # Safety
+/// `mt` must be a live model handle; `box_min` and `box_max` readable for three doubles
+/// each; `out` a writable pointer.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mtcut_mt_roi_box(
+    mt: *const mtcut_mt,
+    box_min: *const f64,
+    box_max: *const f64,
+    out: *mut *mut mtcut_mt,
+) -> mtcut_status {
+    run("mtcut_mt_roi_box", || {
+        // SAFETY: the caller's contract, forwarded to the checks.
+        let (mt, min, max, out) = unsafe {
+            (
+                mt_ref(mt)?,
+                points(box_min, 1, "box_min")?,
+                points(box_max, 1, "box_max")?,
+                Out::new(out, "out")?,
+            )
+        };
+        let region = RoiRegion::Box(Aabb {
+            min: min[0],
+            max: max[0],
+        });
+        let (sub, _) = region_of_interest(mt, &region)
+            .map_err(|e| roi_failure(e, "arguments `box_min`, `box_max`"))?;
+        out.write(mtcut_mt::boxed(sub));
+        Ok(())
+    })
+}
+
+/// The sub-model of `mt` inside the sphere of centre `center` (three doubles) and radius
+/// `radius` (finite, > 0), as `mtcut_mt_roi_box` makes it for a box. The model is cut
+/// along the 14 planes of a polyhedron around the sphere (its bounding cube with the
+/// corners cut off at distance `radius` from the centre), so the sub-model also keeps
+/// what lies between the sphere and that polyhedron (at most 0.24 x `radius` beyond the
+/// sphere, where a cube face meets two corner planes). Errors as `mtcut_mt_roi_box`'s.
+///
+/// # Safety
+/// `mt` must be a live model handle; `center` readable for three doubles; `out` a
+/// writable pointer.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mtcut_mt_roi_sphere(
+    mt: *const mtcut_mt,
+    center: *const f64,
+    radius: f64,
+    out: *mut *mut mtcut_mt,
+) -> mtcut_status {
+    run("mtcut_mt_roi_sphere", || {
+        // SAFETY: the caller's contract, forwarded to the checks.
+        let (mt, center, out) = unsafe {
+            (
+                mt_ref(mt)?,
+                points(center, 1, "center")?,
+                Out::new(out, "out")?,
+            )
+        };
+        let region = RoiRegion::Sphere {
+            center: center[0],
+            radius,
+        };
+        let (sub, _) = region_of_interest(mt, &region)
+            .map_err(|e| roi_failure(e, "arguments `center`, `radius`"))?;
+        out.write(mtcut_mt::boxed(sub));
+        Ok(())
+    })
+}
+
+/// The status of a refused region of interest: the region's fault (`args` names its
+/// arguments) or the model's.
+fn roi_failure(e: RoiError, args: &str) -> Failure {
+    match e {
+        RoiError::InvalidRegion(_) | RoiError::Misses { .. } => {
+            Failure::invalid(format!("{args}: {e}"))
+        }
+        RoiError::Cut { .. } | RoiError::Invalid(_) => {
+            Failure::new(MTCUT_STATUS_INVALID_MESH, e.to_string())
+        }
+    }
 }
 
 fn file_failure(e: MtFileError) -> Failure {
