@@ -481,6 +481,14 @@ impl<'a> StateClassifier<'a> {
     }
 }
 
+/// Builds the tables [`crossed_mask`] and [`face_mask`] read (once per process: 0.3 ms
+/// for the face points of all 16,384 configurations), so that they are not built by the
+/// first cut, whose latency a time-critical host counts: called when a cutter is made.
+pub(crate) fn build_tables() {
+    crossed_mask([POS; 4]);
+    face_mask([POS; 4], 0);
+}
+
 /// The crossed edges of a tet in these states (bit `e` for local edge `e`).
 #[inline]
 pub fn crossed_mask(states: [u8; 4]) -> u8 {

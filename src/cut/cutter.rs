@@ -261,6 +261,7 @@ impl Cutter {
     }
 
     fn prepare_with(mut mesh: TetMesh, scales: Vec<f64>, options: CutOptions) -> Cutter {
+        super::classify::build_tables();
         let start = Instant::now();
         let bvh = TetBvh::build(mesh.positions(), &scales, mesh.tets());
         let build_time = start.elapsed();

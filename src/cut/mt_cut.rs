@@ -410,6 +410,7 @@ impl MtCutter {
                 expected: "the look-up tables (the 1:17 scheme is not conforming)",
             });
         }
+        super::classify::build_tables();
         let mut mt = mt;
         // Scales a cut recorded in the MT (see `CutHistory`): what the cutter that made the
         // cuts measured by; derived again they would differ near the cracks (their edges
