@@ -413,6 +413,24 @@ static void check_cut(mtcut_mesh *mesh) {
   EXPECT(mtcut_mesh_scalpel_sweep(mesh, start, end_same, &o, &st), MTCUT_STATUS_INVALID_ARGUMENT);
   UNTOUCHED(st.tets_cut == 0);
   UNTOUCHED(mtcut_mesh_tet_count(mesh) == tets); /* no refused cut changed the mesh */
+
+  {
+    double xyz[3 * MTCUT_SWEEP_MAX_POINTS] = {0};
+    size_t counts[2] = {0, 0}, n = 0;
+    EXPECT(mtcut_scalpel_sweep_polygons(NULL, end_same, xyz, counts, &n),
+           MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_scalpel_sweep_polygons(start, NULL, xyz, counts, &n), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_scalpel_sweep_polygons(start, end_same, NULL, counts, &n),
+           MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_scalpel_sweep_polygons(start, end_same, xyz, NULL, &n),
+           MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_scalpel_sweep_polygons(start, end_same, xyz, counts, NULL),
+           MTCUT_STATUS_NULL_ARGUMENT);
+    /* A blade that does not move sweeps nothing. */
+    EXPECT(mtcut_scalpel_sweep_polygons(start, end_same, xyz, counts, &n),
+           MTCUT_STATUS_INVALID_ARGUMENT);
+    UNTOUCHED(n == 0 && counts[0] == 0 && counts[1] == 0 && xyz[0] == 0.0);
+  }
 }
 
 static int cancel_at_once(void *user, double fraction) {

@@ -90,6 +90,12 @@
 #define MTCUT_MAX_COMPONENTS 9
 
 /**
+ * The most corners the polygons of one sweep have together (two triangles), for the
+ * output of `mtcut_scalpel_sweep_polygons`.
+ */
+#define MTCUT_SWEEP_MAX_POINTS 6
+
+/**
  * An extraction kept up to date incrementally (opaque): moving its focus or thresholds
  * touches only the fragments whose decision changes, and gives exactly the mesh a fresh
  * extraction would. Made by `mtcut_frontier_new`, released with `mtcut_frontier_free`.
@@ -1104,8 +1110,9 @@ mtcut_status mtcut_mesh_cut_with_options(struct mtcut_mesh *mesh,
  * Cuts `mesh` along the surface a straight blade sweeps in one time step: the segment
  * from `start_xyz[0..3]` to `start_xyz[3..6]` at the start of the step, and from
  * `end_xyz[0..3]` to `end_xyz[3..6]` at its end (corresponding ends). The swept
- * quadrilateral is cut as one polygon when it is planar and convex, else as two
- * triangles (along its shorter diagonal); an end that does not move makes it one
+ * quadrilateral is cut as one polygon when it is planar (within 1e-9 of its size) and
+ * convex, else as two triangles (along its shorter diagonal): the polygons
+ * `mtcut_scalpel_sweep_polygons` gives; an end that does not move makes it one
  * triangle. A blade that does not move, or a sweep that folds over itself, gives
  * `MTCUT_STATUS_INVALID_ARGUMENT` with the mesh unchanged. Called once per time step on
  * the same handle, each step continues the crack the earlier ones made (the handle keeps
@@ -1126,6 +1133,31 @@ mtcut_status mtcut_mesh_scalpel_sweep(struct mtcut_mesh *mesh,
                                       const double *end_xyz,
                                       const struct mtcut_cut_options *options_or_null,
                                       struct mtcut_cut_stats *stats_or_null);
+
+/**
+ * The planar convex polygons a straight blade sweeps in one time step, in the order to
+ * cut them: what `mtcut_mesh_scalpel_sweep` cuts, and what a host moving a scalpel
+ * through a model cuts with `mtcut_mt_cut` (or `mtcut_live_cut`), one call per polygon.
+ * The blade is the segment from `start_xyz[0..3]` to `start_xyz[3..6]` at the start of
+ * the step and from `end_xyz[0..3]` to `end_xyz[3..6]` at its end (corresponding ends).
+ * The sweep is one quadrilateral when it is planar (within 1e-9 of its size) and convex,
+ * one triangle when an end does not move, and two triangles otherwise (along its shorter
+ * diagonal, or along the other when that one would fold). `polygons_xyz` (room for
+ * `3 x MTCUT_SWEEP_MAX_POINTS` doubles) receives the corners, polygon after polygon, in
+ * order around each; `point_counts` (room for 2) the number of corners of each;
+ * `*n_polygons` 1 or 2. A blade that does not move, a sweep folding over itself or a
+ * coordinate that is not finite gives `MTCUT_STATUS_INVALID_ARGUMENT`, nothing written.
+ *
+ * # Safety
+ * `start_xyz` and `end_xyz` readable for 6 doubles each; `polygons_xyz` writable for
+ * `3 x MTCUT_SWEEP_MAX_POINTS` doubles, `point_counts` for 2 `size_t`, `n_polygons` for
+ * one.
+ */
+mtcut_status mtcut_scalpel_sweep_polygons(const double *start_xyz,
+                                          const double *end_xyz,
+                                          double *polygons_xyz,
+                                          size_t *point_counts,
+                                          size_t *n_polygons);
 
 /**
  * Fills the fields of `*options` within `options->struct_size` (which the caller sets

@@ -1035,8 +1035,14 @@ fn a_model_keeps_its_cutter_between_calls() {
     let tolerance = mtcut::geom::Tolerance { relative: 1e-9 };
     let (mut refusals, mut frontiers) = (0, Vec::new());
     for (k, w) in path.windows(2).enumerate() {
-        for polygon in mtcut::geom::scalpel_sweep(w[0], w[1], tolerance).expect("sweep") {
-            let corners: Vec<f64> = polygon.points().iter().flat_map(|p| p.to_array()).collect();
+        // The polygons as a C host gets them, and as the Rust scalpel cuts them.
+        let swept = sweep_polygons(&w[0], &w[1]).expect("sweep");
+        let rust_sweep = mtcut::geom::scalpel_sweep(w[0], w[1], tolerance).expect("sweep");
+        assert_eq!(swept.len(), rust_sweep.len(), "step {k}");
+        for (corners, polygon) in swept.into_iter().zip(rust_sweep) {
+            let rust_corners: Vec<f64> =
+                polygon.points().iter().flat_map(|p| p.to_array()).collect();
+            assert_eq!(corners, rust_corners, "step {k}");
             let before = saved(&mt, &dir);
             let (status, s) = mt_cut(&mt, &corners);
             match cutter.cut(&polygon) {
@@ -1236,5 +1242,110 @@ fn a_region_of_interest_through_the_c_abi() {
     assert!(
         saved(&mt, &dir) == before,
         "a refused region changed the model"
+    );
+}
+
+/// `mtcut_scalpel_sweep_polygons` of a blade moving from `start` to `end`: each polygon's
+/// corners, or the status and message of a refusal.
+fn sweep_polygons(
+    start: &[mtcut::geom::DVec3; 2],
+    end: &[mtcut::geom::DVec3; 2],
+) -> Result<Vec<Vec<f64>>, (mtcut_status, String)> {
+    let flat =
+        |b: &[mtcut::geom::DVec3; 2]| -> Vec<f64> { b.iter().flat_map(|p| p.to_array()).collect() };
+    let (start, end) = (flat(start), flat(end));
+    let mut xyz = [f64::NAN; 3 * MTCUT_SWEEP_MAX_POINTS];
+    let (mut counts, mut n) = ([usize::MAX; 2], usize::MAX);
+    let status = unsafe {
+        mtcut_scalpel_sweep_polygons(
+            start.as_ptr(),
+            end.as_ptr(),
+            xyz.as_mut_ptr(),
+            counts.as_mut_ptr(),
+            &mut n,
+        )
+    };
+    if status != MTCUT_STATUS_OK {
+        assert!(
+            n == usize::MAX && counts == [usize::MAX; 2] && xyz.iter().all(|x| x.is_nan()),
+            "a refused sweep wrote its outputs"
+        );
+        return Err((status, last_error()));
+    }
+    assert!(n == 1 || n == 2, "{n} polygons");
+    let mut polygons = Vec::new();
+    let mut at = 0;
+    for &c in &counts[..n] {
+        assert!(c == 3 || c == 4, "a polygon of {c} corners");
+        polygons.push(xyz[3 * at..3 * (at + c)].to_vec());
+        at += c;
+    }
+    Ok(polygons)
+}
+
+/// The sweep polygons a C host gets: one quadrilateral for a planar sweep, one triangle
+/// when an end stays, two triangles for a twisted one (what the Rust scalpel cuts, see
+/// the tilting blade above); a blade that does not move, a folded sweep, a coordinate that
+/// is not finite and NULL outputs are refused, nothing written.
+#[test]
+fn a_sweep_gives_the_polygons_the_scalpel_cuts() {
+    use mtcut::geom::{DVec3, SWEEP_PLANARITY, scalpel_sweep};
+    let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let start = [v(0., 0., 0.), v(0., 0., 1.)];
+    let cases: [([DVec3; 2], usize); 3] = [
+        ([v(1., 0., 0.), v(1., 0., 1.)], 1),
+        ([v(0., 0., 0.), v(1., 0., 1.)], 1),
+        ([v(1., 0.3, 0.), v(1., -0.3, 1.)], 2),
+    ];
+    for (end, n) in cases {
+        let swept = sweep_polygons(&start, &end).expect("a sweep");
+        let rust = scalpel_sweep(start, end, SWEEP_PLANARITY).expect("a sweep");
+        assert_eq!(swept.len(), n, "{end:?}");
+        for (c, p) in swept.iter().zip(&rust) {
+            let corners: Vec<f64> = p.points().iter().flat_map(|q| q.to_array()).collect();
+            assert_eq!(c, &corners);
+        }
+    }
+    // A blade that does not move, one whose ends swap sides (a bow tie), a NaN.
+    let folded = [v(1., 0., 1.), v(1., 0., 0.)];
+    let nan = [v(f64::NAN, 0., 0.), v(1., 0., 1.)];
+    for (end, needle) in [(start, "start_xyz/end_xyz"), (folded, "start_xyz/end_xyz")] {
+        let (status, message) = sweep_polygons(&start, &end).expect_err("refused");
+        assert_eq!(status, MTCUT_STATUS_INVALID_ARGUMENT, "{message}");
+        assert!(message.contains(needle), "{message}");
+    }
+    let (status, message) = sweep_polygons(&start, &nan).expect_err("refused");
+    assert_eq!(status, MTCUT_STATUS_INVALID_ARGUMENT, "{message}");
+    let (a, b) = ([0.0; 6], [1.0, 0.0, 0.0, 1.0, 0.0, 1.0]);
+    let (mut xyz, mut counts, mut n) = ([0.0; 18], [0usize; 2], 0usize);
+    let (x, c, m) = (xyz.as_mut_ptr(), counts.as_mut_ptr(), &mut n as *mut usize);
+    let null_cases: [(usize, &str); 5] = [
+        (0, "`start_xyz`"),
+        (1, "`end_xyz`"),
+        (2, "`polygons_xyz`"),
+        (3, "`point_counts`"),
+        (4, "`n_polygons`"),
+    ];
+    for (k, needle) in null_cases {
+        let nul = |i: usize| k == i;
+        let status = unsafe {
+            mtcut_scalpel_sweep_polygons(
+                if nul(0) { ptr::null() } else { a.as_ptr() },
+                if nul(1) { ptr::null() } else { b.as_ptr() },
+                if nul(2) { ptr::null_mut() } else { x },
+                if nul(3) { ptr::null_mut() } else { c },
+                if nul(4) { ptr::null_mut() } else { m },
+            )
+        };
+        refused(
+            status,
+            MTCUT_STATUS_NULL_ARGUMENT,
+            "mtcut_scalpel_sweep_polygons",
+            needle,
+        );
+    }
+    assert!(
+        n == 0 && counts == [0, 0] && xyz == [0.0; 18],
+        "a refused call wrote"
     );
 }

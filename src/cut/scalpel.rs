@@ -31,7 +31,7 @@
 
 use super::mt_cut::{MtCutStats, MtCutter};
 use super::options::{CutError, CutOptions};
-use crate::geom::{DVec3, PolygonError, Tolerance, scalpel_sweep};
+use crate::geom::{DVec3, PolygonError, SWEEP_PLANARITY, scalpel_sweep};
 use crate::mt::Mt;
 
 /// A blade position: the segment between two points (the cutting edge).
@@ -69,9 +69,6 @@ pub struct Scalpel {
     cutter: MtCutter,
     blade: Blade,
 }
-
-/// Planarity tolerance of a sweep (relative to its size): below it, one quadrilateral.
-const SWEEP_PLANARITY: Tolerance = Tolerance { relative: 1e-9 };
 
 impl Scalpel {
     /// The MT cut options of a scalpel: [`MtCutter::DEFAULT_OPTIONS`] (see the module

@@ -1,12 +1,12 @@
 //! Cutting a mesh: by a planar convex polygon (paper §3), or by the surface a straight
 //! blade sweeps during one time step (the scalpel sweep), with the cut's statistics.
 
-use super::guard::{Out, deref_mut, run, slice};
+use super::guard::{Out, OutSlice, deref_mut, run, slice};
 use super::mesh::{flat_len, mtcut_mesh};
 use super::status::{Failure, FfiResult, MTCUT_STATUS_INVALID_MESH, mtcut_status};
 use super::versioned::{Versioned, VersionedOut, read_optional};
 use crate::cut::{CutError, CutOptions, CutStats, Scheme};
-use crate::geom::{CutPolygon, DVec3, PolygonError, Tolerance, scalpel_sweep};
+use crate::geom::{CutPolygon, DVec3, PolygonError, SWEEP_PLANARITY, Tolerance, scalpel_sweep};
 use std::mem::offset_of;
 
 /// How cut tets are replaced (a `uint32_t`; other values are refused with
@@ -341,8 +341,9 @@ unsafe fn cut_polygon(
 /// Cuts `mesh` along the surface a straight blade sweeps in one time step: the segment
 /// from `start_xyz[0..3]` to `start_xyz[3..6]` at the start of the step, and from
 /// `end_xyz[0..3]` to `end_xyz[3..6]` at its end (corresponding ends). The swept
-/// quadrilateral is cut as one polygon when it is planar and convex, else as two
-/// triangles (along its shorter diagonal); an end that does not move makes it one
+/// quadrilateral is cut as one polygon when it is planar (within 1e-9 of its size) and
+/// convex, else as two triangles (along its shorter diagonal): the polygons
+/// `mtcut_scalpel_sweep_polygons` gives; an end that does not move makes it one
 /// triangle. A blade that does not move, or a sweep that folds over itself, gives
 /// `MTCUT_STATUS_INVALID_ARGUMENT` with the mesh unchanged. Called once per time step on
 /// the same handle, each step continues the crack the earlier ones made (the handle keeps
@@ -382,16 +383,72 @@ pub unsafe extern "C" fn mtcut_mesh_scalpel_sweep(
         };
         let stats = stats.map(VersionedOut::new).transpose()?;
         let options = options.to_options()?;
-        let polygons = scalpel_sweep(
-            [start[0], start[1]],
-            [end[0], end[1]],
-            CutPolygon::DEFAULT_PLANARITY,
-        )
-        .map_err(|e| polygon_failure(e, "start_xyz/end_xyz"))?;
+        let polygons = sweep(&start, &end)?;
         let result = cut_with(mesh, &polygons, options)?;
         if let Some(out) = stats {
             out.write(result);
         }
+        Ok(())
+    })
+}
+
+/// The polygons a blade sweeps from `start` to `end` (two points each), as the C ABI's
+/// scalpel functions cut them.
+fn sweep(start: &[DVec3], end: &[DVec3]) -> FfiResult<Vec<CutPolygon>> {
+    scalpel_sweep([start[0], start[1]], [end[0], end[1]], SWEEP_PLANARITY)
+        .map_err(|e| polygon_failure(e, "start_xyz/end_xyz"))
+}
+
+/// The most corners the polygons of one sweep have together (two triangles), for the
+/// output of `mtcut_scalpel_sweep_polygons`.
+pub const MTCUT_SWEEP_MAX_POINTS: usize = 6;
+
+/// The planar convex polygons a straight blade sweeps in one time step, in the order to
+/// cut them: what `mtcut_mesh_scalpel_sweep` cuts, and what a host moving a scalpel
+/// through a model cuts with `mtcut_mt_cut` (or `mtcut_live_cut`), one call per polygon.
+/// The blade is the segment from `start_xyz[0..3]` to `start_xyz[3..6]` at the start of
+/// the step and from `end_xyz[0..3]` to `end_xyz[3..6]` at its end (corresponding ends).
+/// The sweep is one quadrilateral when it is planar (within 1e-9 of its size) and convex,
+/// one triangle when an end does not move, and two triangles otherwise (along its shorter
+/// diagonal, or along the other when that one would fold). `polygons_xyz` (room for
+/// `3 x MTCUT_SWEEP_MAX_POINTS` doubles) receives the corners, polygon after polygon, in
+/// order around each; `point_counts` (room for 2) the number of corners of each;
+/// `*n_polygons` 1 or 2. A blade that does not move, a sweep folding over itself or a
+/// coordinate that is not finite gives `MTCUT_STATUS_INVALID_ARGUMENT`, nothing written.
+///
+/// # Safety
+/// `start_xyz` and `end_xyz` readable for 6 doubles each; `polygons_xyz` writable for
+/// `3 x MTCUT_SWEEP_MAX_POINTS` doubles, `point_counts` for 2 `size_t`, `n_polygons` for
+/// one.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mtcut_scalpel_sweep_polygons(
+    start_xyz: *const f64,
+    end_xyz: *const f64,
+    polygons_xyz: *mut f64,
+    point_counts: *mut usize,
+    n_polygons: *mut usize,
+) -> mtcut_status {
+    run("mtcut_scalpel_sweep_polygons", || {
+        // SAFETY: the caller's contract, forwarded to the checks.
+        let (start, end, xyz, counts, n) = unsafe {
+            (
+                points(start_xyz, 2, "start_xyz")?,
+                points(end_xyz, 2, "end_xyz")?,
+                OutSlice::new(polygons_xyz, MTCUT_SWEEP_MAX_POINTS, "polygons_xyz")?,
+                OutSlice::new(point_counts, 2, "point_counts")?,
+                Out::new(n_polygons, "n_polygons")?,
+            )
+        };
+        let polygons = sweep(&start, &end)?;
+        let corners: Vec<f64> = polygons
+            .iter()
+            .flat_map(|p| p.points().iter().flat_map(|q| q.to_array()))
+            .collect();
+        let sizes: Vec<usize> = polygons.iter().map(|p| p.points().len()).collect();
+        // At most two triangles or one quadrilateral: both fit.
+        xyz.write(&corners, 3, "points")?;
+        counts.write(&sizes, 1, "polygons")?;
+        n.write(polygons.len());
         Ok(())
     })
 }

@@ -14,7 +14,7 @@ mod predicates;
 mod tolerance;
 
 pub use plane::Plane;
-pub use polygon::{CutPolygon, PolygonError, scalpel_sweep};
+pub use polygon::{CutPolygon, PolygonError, SWEEP_PLANARITY, scalpel_sweep};
 pub use predicates::{
     Sign, orient2d, orient3d, signed_volume, signed_volume_inexact, triangle_area, triangle_normal,
 };

@@ -18,7 +18,7 @@ use crate::build::{build_with_bar, progress_bar};
 use crate::info::MeshInfo;
 use flate2::read::GzDecoder;
 use mtcut::cut::{Blade, Components, CutOptions, Cutter, MtCutter, Scalpel};
-use mtcut::geom::{Aabb, CutPolygon, DVec3, Tolerance, scalpel_sweep};
+use mtcut::geom::{Aabb, CutPolygon, DVec3, SWEEP_PLANARITY, scalpel_sweep};
 use mtcut::io::{PvdEntry, parse_tetgen, write_mesh, write_pvd};
 use mtcut::mesh::{ImportReport, TetMesh};
 use mtcut::mt::{BuildOptions, ExtractOptions, Extraction};
@@ -180,7 +180,7 @@ pub fn run(args: Args) -> CliResult {
         let sweep = scalpel_sweep(
             curve_blade(&mesh.bbox(), k - 1),
             curve_blade(&mesh.bbox(), k),
-            Tolerance { relative: 1e-9 },
+            SWEEP_PLANARITY,
         )?;
         for polygon in &sweep {
             curve.cut(polygon)?;

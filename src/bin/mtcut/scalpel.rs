@@ -25,7 +25,7 @@
 use crate::CliResult;
 use crate::parse;
 use mtcut::cut::{Blade, CutOptions, Cutter, LiveMt, PendingBudget, Scalpel};
-use mtcut::geom::{DVec3, Tolerance, scalpel_sweep};
+use mtcut::geom::{DVec3, SWEEP_PLANARITY, scalpel_sweep};
 use mtcut::io::{PvdEntry, read_mesh, write_mesh, write_pvd};
 use mtcut::mesh::TetMesh;
 use mtcut::mt::{ExtractOptions, Mt};
@@ -237,8 +237,7 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
     let mut steps: Vec<Value> = Vec::new();
     for (k, w) in blades.windows(2).enumerate().map(|(k, w)| (k + 1, w)) {
         let failed = |e: &dyn std::fmt::Display| failed_step(k, e, &args.output);
-        let sweep =
-            scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).map_err(|e| failed(&e))?;
+        let sweep = scalpel_sweep(w[0], w[1], SWEEP_PLANARITY).map_err(|e| failed(&e))?;
         let (mut frontier_s, mut tets_cut) = (0.0, 0);
         for polygon in &sweep {
             let c = live.cut(polygon).map_err(|e| failed(&e))?;
@@ -329,8 +328,7 @@ fn run_mesh(args: &Args) -> CliResult {
     for (k, w) in blades.windows(2).enumerate().map(|(k, w)| (k + 1, w)) {
         let failed =
             |e: &dyn std::fmt::Display| format!("step {k}: {e}; steps 0-{} written", k - 1);
-        let sweep =
-            scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).map_err(|e| failed(&e))?;
+        let sweep = scalpel_sweep(w[0], w[1], SWEEP_PLANARITY).map_err(|e| failed(&e))?;
         let (mut seconds, mut tets_cut) = (0.0, 0);
         let mut cuts: Vec<Value> = Vec::new();
         for polygon in &sweep {
