@@ -17,6 +17,16 @@ static inline void mtcut_example_fail(const char *what) {
   exit(1);
 }
 
+/* snprintf's result checked: a path that does not fit stops the program (and optimising
+ * compilers do not warn of a truncation the program would not notice). */
+static inline void mtcut_example_path(char *out, size_t size, const char *a, const char *b,
+                                      const char *c) {
+  if (snprintf(out, size, "%s%s%s", a, b, c) >= (int)size) {
+    fprintf(stderr, "path too long: %s%s%s\n", a, b, c);
+    exit(1);
+  }
+}
+
 /* Writes VTU_PATH.json: what `mesh` holds, as mtcut reports it. */
 static inline void mtcut_example_write_sidecar(const mtcut_mesh *mesh, const char *vtu_path) {
   char path[4096], column[256];
@@ -27,7 +37,7 @@ static inline void mtcut_example_write_sidecar(const mtcut_mesh *mesh, const cha
   FILE *f;
 
   if (mtcut_mesh_volume(mesh, &volume) != MTCUT_STATUS_OK) mtcut_example_fail("volume");
-  snprintf(path, sizeof path, "%s.json", vtu_path);
+  mtcut_example_path(path, sizeof path, vtu_path, ".json", "");
   f = fopen(path, "w");
   if (f == NULL) {
     perror(path);
@@ -60,7 +70,7 @@ static inline void mtcut_example_write_sidecar(const mtcut_mesh *mesh, const cha
 /* Writes DIR/NAME with mtcut's writer, and its sidecar DIR/NAME.json. */
 static inline void mtcut_example_write_vtu(const mtcut_mesh *mesh, const char *dir, const char *name) {
   char path[4096];
-  snprintf(path, sizeof path, "%s/%s", dir, name);
+  mtcut_example_path(path, sizeof path, dir, "/", name);
   if (mtcut_mesh_write_vtu(mesh, path) != MTCUT_STATUS_OK) mtcut_example_fail(path);
   mtcut_example_write_sidecar(mesh, path);
   printf("wrote %s\n", path);

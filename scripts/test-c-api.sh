@@ -4,8 +4,8 @@
 #     below uses the moved copy, which proves the packages relocatable;
 #  2. the libraries: SONAME, symlinks, exported symbols = the header's functions;
 #  3. c-examples/ configured with only find_package(mtcut), built, run by ctest: the C99
-#     example, the NULL-argument test, the C++17 wrapper, the VTK round trip, and each
-#     under valgrind memcheck;
+#     example, the NULL-argument test, the C++17 wrapper, the live scalpel, the VTK round
+#     trip, and each under valgrind memcheck;
 #  4. minimal consumers: CMake with mtcut::mtcut, CMake with mtcut::mtcut_static,
 #     pkg-config, the README's C snippet; and a CMake version request the package must
 #     refuse;
@@ -121,7 +121,8 @@ echo "find_package(mtcut $next) refuses $version, as it must"
 
 step "ParaView: pvbatch opens the outputs, checks them, saves screenshots"
 out=$work/examples/out
-pv_files=("$out/cube.vtu=$work/cube.json" "$out/cut-through.vtu" "$out/cut-part0.vtu")
+pv_files=("$out/cube.vtu=$work/cube.json" "$out/cut-through.vtu" "$out/cut-part0.vtu"
+          "$out/live-scalpel.vtu")
 if grep -q "tetgen_mt" <<<"$examples"; then
   pv_files+=("$out/tetgen-coarse.vtu" "$out/tetgen-focus.vtu" "$out/tetgen-cut.vtu"
             "$out/tetgen-mt-cut-coarse.vtu")

@@ -440,10 +440,14 @@ pub unsafe extern "C" fn mtcut_scalpel_sweep_polygons(
             )
         };
         let polygons = sweep(&start, &end)?;
-        let corners: Vec<f64> = polygons
-            .iter()
-            .flat_map(|p| p.points().iter().flat_map(|q| q.to_array()))
-            .collect();
+        // Plain loops: a flat_map over coordinate arrays made memcheck report reads of
+        // uninitialised memory inside the iterator (valgrind 3.19, release build).
+        let mut corners: Vec<f64> = Vec::with_capacity(3 * MTCUT_SWEEP_MAX_POINTS);
+        for p in &polygons {
+            for q in p.points() {
+                corners.extend_from_slice(&q.to_array());
+            }
+        }
         let sizes: Vec<usize> = polygons.iter().map(|p| p.points().len()).collect();
         // At most two triangles or one quadrilateral: both fit.
         xyz.write(&corners, 3, "points")?;
