@@ -13,6 +13,7 @@
 // Usage: live_scalpel MESH_FILE OUTPUT_DIR
 #include <mtcut.h>
 
+#include "handles.hpp"
 #include "sidecar.h"
 
 #include <chrono>
@@ -26,50 +27,7 @@
 
 namespace {
 
-struct MeshDeleter {
-  void operator()(mtcut_mesh *m) const noexcept { mtcut_mesh_free(m); }
-};
-struct MtDeleter {
-  void operator()(mtcut_mt *m) const noexcept { mtcut_mt_free(m); }
-};
-struct LiveDeleter {
-  void operator()(mtcut_live *l) const noexcept { mtcut_live_free(l); }
-};
-using Mesh = std::unique_ptr<mtcut_mesh, MeshDeleter>;
-using Mt = std::unique_ptr<mtcut_mt, MtDeleter>;
-using Live = std::unique_ptr<mtcut_live, LiveDeleter>;
-
-void check(mtcut_status status, const std::string &what) {
-  if (status != MTCUT_STATUS_OK) {
-    throw std::runtime_error(what + ": " + mtcut_status_message(status) + ": " +
-                             mtcut_last_error_message());
-  }
-}
-
-void verify(bool cond, const std::string &what) {
-  if (!cond) throw std::runtime_error("unexpected result: " + what);
-}
-
-void verify_valid(const mtcut_mesh *m, const std::string &what) {
-  bool valid = false;
-  char message[512];
-  check(mtcut_mesh_validate(m, &valid, message, sizeof message, nullptr), "validate");
-  verify(valid, what + ": " + message);
-}
-
-size_t components(const mtcut_mesh *m) {
-  size_t c = 0;
-  check(mtcut_mesh_component_count(m, &c), "components");
-  return c;
-}
-
-mtcut_mt_stats statistics(const mtcut_mt *mt) {
-  mtcut_mt_stats st;
-  std::memset(&st, 0, sizeof st);
-  st.struct_size = sizeof st;
-  check(mtcut_mt_statistics(mt, &st), "statistics");
-  return st;
-}
+using namespace mtcut_example;
 
 // The blade at step k of `steps`: a segment spanning the body's height (with margin),
 // leaning a little in y, moved across it in x (from outside to outside).
@@ -78,6 +36,15 @@ std::vector<double> blade(const double lo[3], const double hi[3], int k, int ste
   const double x = lo[0] - 0.02 * d[0] + 1.04 * d[0] * k / steps;
   const double y = 0.5 * (lo[1] + hi[1]);
   return {x, y + 0.013 * d[1], lo[2] - 0.1 * d[2], x, y - 0.011 * d[1], hi[2] + 0.1 * d[2]};
+}
+
+// The queued model work, within `max_fragments` (0: all of it).
+mtcut_pending_report process_pending(mtcut_live *live, size_t max_fragments) {
+  mtcut_pending_report report;
+  std::memset(&report, 0, sizeof report);
+  report.struct_size = sizeof report;
+  check(mtcut_live_process_pending(live, max_fragments, 0.0, &report), "queued work");
+  return report;
 }
 
 }  // namespace
@@ -154,10 +121,7 @@ int main(int argc, char **argv) {
       // Time for some of the queued work every other frame: a budget of one fragment
       // starts one queued cut (a cut is processed whole), so the queue grows meanwhile.
       if (s % 2 == 0) {
-        mtcut_pending_report report;
-        std::memset(&report, 0, sizeof report);
-        report.struct_size = sizeof report;
-        check(mtcut_live_process_pending(live.get(), 1, 0.0, &report), "pending work");
+        const mtcut_pending_report report = process_pending(live.get(), 1);
         refused += report.refused;
         fragments += report.fragments;
         verify(report.cuts_done == 1, "the budget starts one cut");
@@ -170,10 +134,7 @@ int main(int argc, char **argv) {
       Mesh current(raw);
       verify_valid(current.get(), "current mesh at step " + std::to_string(s));
     }
-    mtcut_pending_report report;
-    std::memset(&report, 0, sizeof report);
-    report.struct_size = sizeof report;
-    check(mtcut_live_process_pending(live.get(), 0, 0.0, &report), "the rest of the work");
+    const mtcut_pending_report report = process_pending(live.get(), 0);
     refused += report.refused;
     fragments += report.fragments;
     verify(mtcut_live_pending_cuts(live.get()) == 0, "nothing left queued");

@@ -11,6 +11,7 @@
 // Usage: tetgen_mt OUTPUT_DIR
 #include <mtcut.h>
 
+#include "handles.hpp"
 #include "sidecar.h"
 
 #include <tetgen.h>
@@ -25,29 +26,7 @@
 
 namespace {
 
-struct MeshDeleter {
-  void operator()(mtcut_mesh *m) const noexcept { mtcut_mesh_free(m); }
-};
-struct MtDeleter {
-  void operator()(mtcut_mt *m) const noexcept { mtcut_mt_free(m); }
-};
-struct FrontierDeleter {
-  void operator()(mtcut_frontier *f) const noexcept { mtcut_frontier_free(f); }
-};
-using Mesh = std::unique_ptr<mtcut_mesh, MeshDeleter>;
-using Mt = std::unique_ptr<mtcut_mt, MtDeleter>;
-using Frontier = std::unique_ptr<mtcut_frontier, FrontierDeleter>;
-
-void check(mtcut_status status, const std::string &what) {
-  if (status != MTCUT_STATUS_OK) {
-    throw std::runtime_error(what + ": " + mtcut_status_message(status) + ": " +
-                             mtcut_last_error_message());
-  }
-}
-
-void verify(bool cond, const std::string &what) {
-  if (!cond) throw std::runtime_error("unexpected result: " + what);
-}
+using namespace mtcut_example;
 
 // One facet of the surface: an outer polygon, and optionally an inner one cut out of it.
 void set_facet(tetgenio::facet &f, const std::vector<int> &outer, const std::vector<int> &inner,
@@ -113,25 +92,6 @@ Mesh tetrahedralize_box_with_hole() {
   return Mesh(raw);
 }
 
-double volume(const mtcut_mesh *m) {
-  double v = 0.0;
-  check(mtcut_mesh_volume(m, &v), "volume");
-  return v;
-}
-
-size_t components(const mtcut_mesh *m) {
-  size_t c = 0;
-  check(mtcut_mesh_component_count(m, &c), "components");
-  return c;
-}
-
-void verify_valid(const mtcut_mesh *m, const std::string &what) {
-  bool valid = false;
-  char message[512];
-  check(mtcut_mesh_validate(m, &valid, message, sizeof message, nullptr), "validate");
-  verify(valid, what + ": " + message);
-}
-
 // The build's progress, printed every tenth of the way.
 struct Progress {
   double next = 0.0;
@@ -146,14 +106,6 @@ int report(void *user, double fraction) {
     p->next = std::floor(fraction * 10.0 + 1.0) / 10.0;
   }
   return 0;  // nonzero would cancel the build
-}
-
-mtcut_mt_stats statistics(const mtcut_mt *mt) {
-  mtcut_mt_stats s;
-  std::memset(&s, 0, sizeof s);
-  s.struct_size = sizeof s;
-  check(mtcut_mt_statistics(mt, &s), "statistics");
-  return s;
 }
 
 }  // namespace
