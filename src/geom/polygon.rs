@@ -362,8 +362,8 @@ impl CutPolygon {
 
 /// The planarity tolerance of the scalpels' sweeps ([`scalpel_sweep`] as
 /// [`crate::cut::Scalpel`], the `mtcut scalpel` command and the C ABI's sweep functions
-/// call it): a sweep planar within 1e-9 of its size is one quadrilateral, any other two
-/// triangles, so a blade moved by the same positions is cut alike by all of them.
+/// call it): a convex sweep planar within 1e-9 of its size is one quadrilateral, a twisted
+/// one two triangles, so a blade moved by the same positions is cut alike by all of them.
 pub const SWEEP_PLANARITY: Tolerance = Tolerance { relative: 1e-9 };
 
 /// The polygons swept by a straight blade moving during one time step: the segment
