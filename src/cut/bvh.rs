@@ -51,8 +51,8 @@ pub struct TetBvh {
     next: Vec<TetId>,
 }
 
-/// How a query runs: in parallel over subtrees (then without the cache and the buffers),
-/// or on one thread with a cache of the states of vertices near the plane.
+/// How a query runs: in parallel over subtrees (then without the buffers), or on one
+/// thread; either way with a cache of the states of vertices near the plane.
 pub struct QueryOptions<'c> {
     pub parallel: bool,
     pub cache: &'c mut StateCache,
@@ -273,11 +273,11 @@ impl TetBvh {
             band: contour_band,
             slack: 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element()),
         };
+        cache.begin(positions.len());
         if parallel {
-            self.visit_parallel(&q, 0, 0, out);
+            self.visit_parallel(&q, 0, 0, out, cache);
         } else {
-            cache.begin(positions.len());
-            self.visit(&q, 0, out, Some(cache), buffers);
+            self.visit(&q, 0, out, cache, buffers);
         }
     }
 
@@ -315,7 +315,7 @@ impl TetBvh {
         q: &Query<'_>,
         node: u32,
         out: &mut Candidates,
-        mut cache: Option<&mut StateCache>,
+        cache: &StateCache,
         buffers: &mut QueryBuffers,
     ) {
         let QueryBuffers {
@@ -387,12 +387,9 @@ impl TetBvh {
             let near = |v: crate::mesh::VertexId| {
                 q.states.vertex(v, q.positions[v.idx()], q.scales[v.idx()])
             };
-            let states = match &mut cache {
-                Some(c) => q
-                    .states
-                    .tet_with(q.positions, tet, |v| c.get(v, || near(v))),
-                None => q.states.tet_with(q.positions, tet, near),
-            };
+            let states = q
+                .states
+                .tet_with(q.positions, tet, |v| cache.get(v, || near(v)));
             out.tested += 1;
             if is_candidate(states) {
                 out.tets.push(t);
@@ -404,18 +401,25 @@ impl TetBvh {
     /// Parallel depth-first traversal: the two subtrees of the top levels are visited in
     /// parallel and their results concatenated left then right, as `visit` would list
     /// them.
-    fn visit_parallel(&self, q: &Query<'_>, node: u32, depth: u32, out: &mut Candidates) {
+    fn visit_parallel(
+        &self,
+        q: &Query<'_>,
+        node: u32,
+        depth: u32,
+        out: &mut Candidates,
+        cache: &StateCache,
+    ) {
         let n = &self.nodes[node as usize];
         if !self.node_may_touch(q, n) {
             return;
         }
         if n.count > 0 || depth >= 6 {
-            return self.visit(q, node, out, None, &mut QueryBuffers::default());
+            return self.visit(q, node, out, cache, &mut QueryBuffers::default());
         }
         let (mut a, mut b) = (Candidates::default(), Candidates::default());
         rayon::join(
-            || self.visit_parallel(q, node + 1, depth + 1, &mut a),
-            || self.visit_parallel(q, n.link, depth + 1, &mut b),
+            || self.visit_parallel(q, node + 1, depth + 1, &mut a, cache),
+            || self.visit_parallel(q, n.link, depth + 1, &mut b, cache),
         );
         for part in [a, b] {
             out.tets.extend(part.tets);

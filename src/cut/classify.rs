@@ -21,6 +21,7 @@ use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::{EDGE_OF_VERTICES, TET_EDGES, TET_FACES};
 use crate::mesh::{Tet, VertexId};
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// "No record".
 pub(crate) const NONE: u32 = u32::MAX;
@@ -88,14 +89,29 @@ pub(crate) const PROVISIONAL: u32 = 1 << 31;
 const PROVISIONAL_FACE: u32 = 1 << 30;
 
 /// A per-vertex cache of states for one cut (epoch-stamped: never cleared), for the
-/// vertices near the plane that many tets share.
-#[derive(Clone, Debug, Default)]
+/// vertices near the plane that many tets share. Shared by the threads of a parallel
+/// query: entries are atomic, and threads racing on a vertex compute the same state, so
+/// relaxed order is enough (and as cheap as a plain load or store).
+#[derive(Debug, Default)]
 pub struct StateCache {
     /// The current cut's epoch (below 2²⁴).
     epoch: u32,
     /// Per vertex: the epoch of the cut that computed its state (bits 8 and up) and the
     /// state (bits 0–7). In one word, a vertex costs one cache miss, not two.
-    entries: Vec<u32>,
+    entries: Vec<AtomicU32>,
+}
+
+impl Clone for StateCache {
+    fn clone(&self) -> StateCache {
+        StateCache {
+            epoch: self.epoch,
+            entries: self
+                .entries
+                .iter()
+                .map(|e| AtomicU32::new(e.load(Ordering::Relaxed)))
+                .collect(),
+        }
+    }
 }
 
 impl StateCache {
@@ -104,7 +120,7 @@ impl StateCache {
         self.epoch += 1;
         if self.epoch == 1 << 24 {
             // Wrapped after 16 million cuts: old epochs could collide, start afresh.
-            self.entries.fill(0);
+            self.entries.iter_mut().for_each(|e| *e.get_mut() = 0);
             self.epoch = 1;
         }
         self.reserve(n_vertices);
@@ -113,18 +129,20 @@ impl StateCache {
     /// Makes room for `n_vertices` (done ahead, the first cut does not pay for it).
     pub fn reserve(&mut self, n_vertices: usize) {
         if self.entries.len() < n_vertices {
-            self.entries.resize(n_vertices, 0);
+            self.entries.resize_with(n_vertices, || AtomicU32::new(0));
         }
     }
 
     /// The cached state of `v`, computed by `f` on first request in this cut.
     #[inline]
-    pub fn get(&mut self, v: VertexId, f: impl FnOnce() -> u8) -> u8 {
-        let entry = &mut self.entries[v.idx()];
-        if *entry >> 8 != self.epoch {
-            *entry = self.epoch << 8 | u32::from(f());
+    pub fn get(&self, v: VertexId, f: impl FnOnce() -> u8) -> u8 {
+        let entry = &self.entries[v.idx()];
+        let mut e = entry.load(Ordering::Relaxed);
+        if e >> 8 != self.epoch {
+            e = self.epoch << 8 | u32::from(f());
+            entry.store(e, Ordering::Relaxed);
         }
-        *entry as u8
+        e as u8
     }
 }
 
