@@ -220,7 +220,7 @@ impl LiveMt {
         let rest = e.mesh.positions().to_vec();
         let current = current_cutter(&cutter, e.mesh, &e.vertex_ids)?;
         let first_cut_vertex = cutter.mt().nb_vertices();
-        Ok(LiveMt {
+        let mut live = LiveMt {
             cut_origins: Vec::new(),
             first_cut_vertex,
             cut_ends: Vec::new(),
@@ -237,7 +237,20 @@ impl LiveMt {
             pending: VecDeque::new(),
             remesh_due: false,
             match_due: false,
-        })
+        };
+        live.keep_room();
+        Ok(live)
+    }
+
+    /// Keeps room in the current mesh's arrays, and in the rest positions and MT ids that
+    /// grow with its vertices, for the next frontier-first cuts ([`ROOM`]): their
+    /// reallocation (a copy of each, and fresh pages to fault in) stays out of the
+    /// time-critical cut. Without it, a live model's first cut grew the rest positions.
+    fn keep_room(&mut self) {
+        self.current.keep_room(ROOM);
+        let room = (self.rest.len() as f64 * ROOM).ceil() as usize;
+        self.rest.reserve(room);
+        self.mt_vertex.reserve(room);
     }
 
     /// The MT, in rest space, with every cut processed so far.
@@ -414,12 +427,7 @@ impl LiveMt {
             report.remeshed = true;
         }
         report.cuts_left = self.pending.len();
-        self.current.keep_room(ROOM);
-        // The rest positions and MT ids grow with the current mesh's vertices: room made
-        // here keeps their reallocation (a copy of each) out of the time-critical cut.
-        let room = (self.rest.len() as f64 * ROOM).ceil() as usize;
-        self.rest.reserve(room);
-        self.mt_vertex.reserve(room);
+        self.keep_room();
         report.seconds = start.elapsed().as_secs_f64();
         Ok(report)
     }
@@ -588,6 +596,7 @@ impl LiveMt {
         self.current = cutter;
         self.rest = rest;
         self.mt_vertex = e.vertex_ids;
+        self.keep_room();
         self.deformed = deformed;
         // Not deformed, the mesh holds the extraction's own positions.
         self.at_rest = !deformed;
@@ -606,14 +615,12 @@ fn current_cutter(mt: &MtCutter, mesh: TetMesh, ids: &[VertexId]) -> Result<Cutt
     // Components are the MT's business (`Mt::nb_components`): counting them on every
     // frontier-first cut would cost a pass over the current mesh.
     let options = mt.options().with_count_components(false);
-    let mut cutter = Cutter::for_mt_frontier(mesh, scales, crack, options)?;
-    cutter.keep_room(ROOM);
-    Ok(cutter)
+    Cutter::for_mt_frontier(mesh, scales, crack, options)
 }
 
 /// The share of its size a current mesh keeps free for the tets and vertices of the next
-/// frontier-first cuts (topped up by [`LiveMt::process_pending`]), so that none of them
-/// pays for copying the mesh's arrays to larger ones.
+/// frontier-first cuts (made with the mesh, topped up by [`LiveMt::process_pending`]), so
+/// that none of them pays for copying the mesh's arrays to larger ones.
 const ROOM: f64 = 0.25;
 
 /// `polygon` (given in `d`'s current space) mapped to rest space by the affine map that
