@@ -125,13 +125,19 @@ impl Attributes {
     pub fn push_copies(&mut self, src: &[u32]) {
         for c in &mut self.columns {
             let k = c.components;
-            c.values.reserve(src.len() * k);
-            // Value by value: a row is a few values, which a call to copy it (`copy_within`)
-            // would cost more than.
-            for &i in src {
-                for x in i as usize * k..(i as usize + 1) * k {
-                    let value = c.values[x];
-                    c.values.push(value);
+            let old = c.values.len();
+            // Grown once, then filled by a gather from the old rows (a push per value
+            // checked the capacity every time: 4% of a live model's scalpel step).
+            c.values.resize(old + src.len() * k, 0.0);
+            let (rows, new) = c.values.split_at_mut(old);
+            if k == 1 {
+                for (x, &i) in new.iter_mut().zip(src) {
+                    *x = rows[i as usize];
+                }
+            } else {
+                for (x, &i) in new.chunks_exact_mut(k).zip(src) {
+                    let i = i as usize * k;
+                    x.copy_from_slice(&rows[i..i + k]);
                 }
             }
         }
@@ -211,6 +217,8 @@ mod tests {
             vec![0.0, 10.0, 2.5, 0.0, 10.0, 2.5]
         );
         assert_eq!(a.get("v").unwrap().get(2), &[1.75, 2.75, 3.75]);
+        assert_eq!(a.get("v").unwrap().get(4), &[4.0, 5.0, 6.0]);
+        assert_eq!(a.get("v").unwrap().get(5), &[1.75, 2.75, 3.75]);
         let s = a.select(&[3, 1]);
         assert_eq!(s.get("t").unwrap().values, vec![0.0, 10.0]);
         assert!(s.mismatched(2).is_none());
