@@ -5,10 +5,10 @@
 // steps. Each step cuts the polygons the blade swept (mtcut_scalpel_sweep_polygons) from
 // the current mesh first, where the body lies now (mtcut_live_cut), and queues the cut of
 // the model; every other step goes on with that queue within a budget
-// (mtcut_live_process_pending); what is left is processed at the end. The current mesh must be valid after every step, every
-// queued cut taken, and the body in two pieces at the end, in the current mesh and in the
-// model. Writes live-scalpel.vtu (the last current mesh) with its JSON sidecar. Exit 1 on
-// the first surprise.
+// (mtcut_live_process_pending); what is left is processed at the end. The current mesh
+// must be valid after every step, every queued cut taken, and the body in two pieces at
+// the end, in the current mesh and in the model. Writes live-scalpel.vtu (the last
+// current mesh) with its JSON sidecar. Exit 1 on the first surprise.
 //
 // Usage: live_scalpel MESH_FILE OUTPUT_DIR
 #include <mtcut.h>
