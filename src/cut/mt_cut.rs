@@ -163,21 +163,34 @@
 //!   copy) as on that crack, any other by its position — so every level decides alike.
 //!   (Those taken tips lie up to the tip reach off the earlier plane, on its crack, which
 //!   bends through them: by position, coarse and fine tets around a tip decided apart.)
+//!   Tets joined through a face at the tip that lies on no crack (of any level: they
+//!   meet in some extracted mesh) then keep the tip alike, a group holding tets of both
+//!   kinds keeping it: near the corner where a blade ending inside the body turned, a
+//!   coarse level's earlier crack ends short of the line the new polygon begins on (its
+//!   tips there lie on faces cutting the corner), so tets beyond that end join the wedge
+//!   to the rest, and the tip is a crack tip on that level. Where the tip is so kept whole
+//!   while the finest or the coarsest mesh has cracks all around it, that mesh would be
+//!   pinched there (two fans of crack faces meeting at a point, which the fragments'
+//!   floors and ceilings do not show): the cut is refused before the MT changes.
 //!   Measured (tests/mt_scalpel.rs; 4° and 16° in runs of other paths): an incision
 //!   turning by 8° or 30° per step through the body's depth, stopped inside and extended
 //!   through each shared mesh, keeps every level valid and cuts a corner off each, as the
 //!   plain engine does; a blade tilting back and forth across them in 10 steps separates
 //!   each; a turning blade ending inside fandisk works. Still refused: some steps at
 //!   steeper angles (the same tilt in 20 steps, on the three meshes) and of a turning
-//!   blade ending inside pinion or liver (at a tip near the corner where two steps'
-//!   cracks end, tets reaching around that end take different copies), where a
-//!   fragment's floor and ceiling disagree. Tried and dropped: deciding the copies by the
-//!   groups tets form around each tip (joined through faces), the same over all levels —
-//!   the two cracks' fronts leave slivers between them that join the groups, so tips kept
-//!   no copy and the boundary was pinched at them; counting this cut's own points as on
-//!   the earlier plane (more steps refused); a taken tip as a lip of the side its tets
-//!   keep (every 20-step tilt cut, but on fandisk the bodies' tets then held each other's
-//!   vertices on coarser levels, and the MT stayed one component). A cut of a deformed body
+//!   blade ending inside pinion or liver (a shallow incision turning by 4°, 8° and 16°
+//!   per step: 3, 1 and 1 of its steps on pinion, 8, 4 and 2 on liver; 5, 2 and 1 on
+//!   pinion before tets were joined), where one level needs a tip whole and another
+//!   needs it split, which one copy per tip cannot give. Tried and dropped: deciding the
+//!   copies by the groups tets form around each tip (joined through faces), the same over
+//!   all levels, instead of by position — the two cracks' fronts leave slivers between
+//!   them that join the groups, so tips kept no copy and the boundary was pinched at
+//!   them; keeping a tip whole wherever two tets across a face on no crack decided apart
+//!   (the finest mesh pinched at some, on a 20-step tilt of fandisk); counting this cut's
+//!   own points as on the earlier plane (more steps refused); a taken tip as a lip of the
+//!   side its tets keep (every 20-step tilt cut, but on fandisk the bodies' tets then held
+//!   each other's vertices on coarser levels, and the MT stayed one component). A cut of
+//!   a deformed body
 //!   (`cut_deformed`) keeps no record: a step continuing one of those at an angle is
 //!   refused as before (tests/mt_live.rs). Before, every such step was refused. Such a
 //!   cut is not left in the MT: before closing, every fragment the cut changed has its
@@ -904,9 +917,29 @@ impl MtCutter {
         let mut snapped: Vec<VertexId> = around.keys().copied().collect();
         snapped.sort_unstable();
         stats.vertices_snapped = snapped.len();
+        let is_cut_vertex =
+            |v: VertexId| v.0 != GHOST.0 && (v >= first_new || around.contains_key(&v));
+        // `OUT` vertices of the tets the cut changes: a crack opening from a snapped vertex
+        // may reach one (an earlier crack's vertex in the same plane), so the faces of the
+        // opening hold them; faces made of them only are the earlier crack's, not this cut's.
+        let mut out_vertices: Vec<VertexId> = Vec::new();
+        for (k, class) in classes.iter().enumerate() {
+            if child_of[k] != NONE || class.touches_cut() {
+                let out = (0..4).filter(|&j| class.states[j] == OUT);
+                out_vertices.extend(out.map(|j| tets[k][j]));
+            }
+        }
+        out_vertices.sort_unstable();
+        out_vertices.dedup();
+        let on_crack = |f: [VertexId; 3]| {
+            f.iter()
+                .all(|&v| is_cut_vertex(v) || out_vertices.binary_search(&v).is_ok())
+                && f.iter().any(|&v| is_cut_vertex(v))
+        };
         // Per turning tip, whether tets of every level hold it outside and inside the wedge
-        // (then it takes a copy).
+        // (then it takes a copy), and which tets keep it (`keeps`).
         let mut turn_groups: HashMap<VertexId, [bool; 2], FxBuild> = HashMap::default();
+        let mut keeps: HashMap<(VertexId, Tet), bool, FxBuild> = HashMap::default();
         if !turn.is_empty() {
             let early = origin_positions(positions, &origins);
             let pos = |v: VertexId| {
@@ -916,14 +949,24 @@ impl MtCutter {
                     early[v.idx() - nv]
                 }
             };
+            // Every tet holding a tip, with its side by position, and whether it is in the
+            // finest mesh (bit 0) and the coarsest (bit 1).
+            let mut at_tip: Vec<(VertexId, Tet, bool)> = Vec::new();
+            let mut levels: Vec<u8> = Vec::new();
+            let mut sides: Vec<Side> = Vec::new();
+            let mut owners: Vec<FragmentId> = Vec::new();
             for (k, class) in classes.iter().enumerate() {
                 if !class.touches_cut() {
                     continue;
                 }
+                let coarsest = mt.fragment_kind(mt.tet_destroyer(cand[k])) == FragmentKind::Drain;
+                let level = u8::from(finest[k]) | u8::from(coarsest) << 1;
                 let mut see = |t: &Tet, side: Side| {
                     for &v in t.iter().filter(|&&v| turn.has(v)) {
-                        let w = turn.in_wedge(v, t, side, &pos);
-                        turn_groups.entry(v).or_default()[usize::from(w)] = true;
+                        at_tip.push((v, *t, turn.in_wedge(v, t, side, &pos)));
+                        sides.push(side);
+                        levels.push(level);
+                        owners.push(mt.tet_creator(cand[k]));
                     }
                 };
                 match child_of[k] {
@@ -933,6 +976,78 @@ impl MtCutter {
                         for c in 0..ch.len {
                             see(&ch.tets[c], ch.sides[c]);
                         }
+                    }
+                }
+            }
+            // Tets joined through a face at the tip on no crack must keep it alike: where
+            // the cracks end near it (a level whose earlier crack ends short of the line
+            // the new polygon begins on, near a corner of a blade ending inside the body),
+            // tets beyond their ends join the wedge to the rest, and the whole group
+            // keeps the tip there, as a tip of a plain crack.
+            let mut parent: Vec<u32> = (0..at_tip.len() as u32).collect();
+            // The first tet holding each face at a tip (tets of several levels may hold
+            // it on one side): all tets on both sides of a face are joined.
+            let mut by_face: HashMap<(VertexId, FaceKey), u32, FxBuild> = HashMap::default();
+            for (i, (v, t, _)) in at_tip.iter().enumerate() {
+                for f in faces_of(t).into_iter().filter(|f| f.contains(&v.0)) {
+                    by_face.entry((*v, f)).or_insert(i as u32);
+                }
+            }
+            for (i, (v, t, _)) in at_tip.iter().enumerate() {
+                for f in faces_of(t).into_iter().filter(|f| f.contains(&v.0)) {
+                    if let Some(&j) = by_face.get(&(*v, flip_face(f))) {
+                        if !on_crack(f.map(VertexId)) {
+                            union(&mut parent, i as u32, j);
+                            union(&mut parent, i as u32, by_face[&(*v, f)]);
+                        }
+                    }
+                }
+            }
+            let mut mixed: HashMap<u32, [bool; 2], FxBuild> = HashMap::default();
+            for (i, &(_, _, w)) in at_tip.iter().enumerate() {
+                let r = find(&mut parent, i as u32);
+                mixed.entry(r).or_default()[usize::from(w)] = true;
+            }
+            let mut forced: Vec<VertexId> = Vec::new();
+            for (i, &(v, t, w)) in at_tip.iter().enumerate() {
+                let r = find(&mut parent, i as u32);
+                let keep = w || mixed[&r] == [true, true];
+                if keep != w {
+                    forced.push(v);
+                }
+                keeps.insert((v, t), keep);
+                turn_groups.entry(v).or_default()[usize::from(keep)] = true;
+            }
+            // A tip kept whole on a level where the cracks surround it would pinch that
+            // level's boundary there (two fans of crack faces meeting at one point), which
+            // the check of the fragments' floors and ceilings does not see: the finest and
+            // coarsest meshes are checked here (as `Mt::validate` checks them), and such a
+            // cut refused before the MT changes.
+            forced.sort_unstable();
+            forced.dedup();
+            // Other snapped vertices get a copy for the negative side when tets of both
+            // sides and no straddling tet hold them (as decided below).
+            let copy = |u: VertexId, t: &Tet, side: Side| match keeps.get(&(u, *t)) {
+                Some(&keep) => !keep,
+                None => side == Side::Negative && around.get(&u) == Some(&[true, true, false]),
+            };
+            for &v in &forced {
+                for (bit, name) in [(1, "finest"), (2, "coarsest")] {
+                    let star = (0..at_tip.len())
+                        .filter(|&i| levels[i] & bit != 0 && at_tip[i].0 == v)
+                        .map(|i| (at_tip[i].1, sides[i]));
+                    let fans = tip_fans(v, star, &copy);
+                    if fans.iter().any(|&n| n > 1) {
+                        let i =
+                            (0..at_tip.len()).find(|&i| levels[i] & bit != 0 && at_tip[i].0 == v);
+                        return Err(CutError::MtInconsistent {
+                            fragment: i.map_or(0, |i| owners[i].idx()),
+                            detail: format!(
+                                "its {name} mesh would be pinched at vertex {}: crack faces \
+                                 around it in separate fans",
+                                v.0
+                            ),
+                        });
                     }
                 }
             }
@@ -963,36 +1078,16 @@ impl MtCutter {
                 VertexOrigin::Copy { .. } => stats.vertex_copies += 1,
             }
         }
-        let is_cut_vertex =
-            |v: VertexId| v.0 != GHOST.0 && (v >= first_new || around.contains_key(&v));
-        // `OUT` vertices of the tets the cut changes: a crack opening from a snapped vertex
-        // may reach one (an earlier crack's vertex in the same plane), so the faces of the
-        // opening hold them; faces made of them only are the earlier crack's, not this cut's.
-        let mut out_vertices: Vec<VertexId> = Vec::new();
-        for (k, class) in classes.iter().enumerate() {
-            if child_of[k] != NONE || class.touches_cut() {
-                let out = (0..4).filter(|&j| class.states[j] == OUT);
-                out_vertices.extend(out.map(|j| tets[k][j]));
-            }
-        }
-        out_vertices.sort_unstable();
-        out_vertices.dedup();
-        let on_crack = |f: [VertexId; 3]| {
-            f.iter()
-                .all(|&v| is_cut_vertex(v) || out_vertices.binary_search(&v).is_ok())
-                && f.iter().any(|&v| is_cut_vertex(v))
-        };
         // The tets of the negative side take the copies, except around a turning tip:
         // there the tets outside the wedge between the two cracks do (`holder` is the real
         // tet whose side `t` is on: itself, or the tet a ghost's triangle bounds).
         let for_side = |t: Tet, side: Side, holder: &Tet, at: &[DVec3]| -> Tet {
             t.map(|v| match copy_of.get(&v) {
                 Some(&c) if turn_groups.contains_key(&v) => {
-                    if turn.in_wedge(v, holder, side, &|u: VertexId| at[u.idx()]) {
-                        v
-                    } else {
-                        c
-                    }
+                    let keep = keeps.get(&(v, *holder)).copied().unwrap_or_else(|| {
+                        turn.in_wedge(v, holder, side, &|u: VertexId| at[u.idx()])
+                    });
+                    if keep { v } else { c }
                 }
                 Some(&c) if side == Side::Negative => c,
                 _ => v,
@@ -1640,6 +1735,55 @@ impl<'a> TurnTips<'a> {
             a == Sign::Zero || a == s_old
         })
     }
+}
+
+/// The boundary fans at turning tip `v` in `star` (the tets of one mesh holding it, with
+/// their sides of the cut), once each tet takes the copies it will (`copy`: whether tet
+/// `t` on a side takes vertex `u`'s copy): per vertex, the tip and its copy, how many
+/// separate chains the edges opposite it in the boundary faces around it form (more than
+/// one: the mesh is pinched there).
+fn tip_fans(
+    v: VertexId,
+    star: impl Iterator<Item = (Tet, Side)>,
+    copy: &impl Fn(VertexId, &Tet, Side) -> bool,
+) -> [usize; 2] {
+    let mut links: [Vec<(u64, u64)>; 2] = Default::default();
+    for (t, side) in star {
+        // A vertex as it will be: its id, and whether it is the copy.
+        let m = t.map(|u| u64::from(u.0) << 1 | u64::from(copy(u, &t, side)));
+        for lf in TET_FACES {
+            let [a, b, c] = lf.map(|j| m[j]);
+            let (x, edge) = if a >> 1 == u64::from(v.0) {
+                (a, (b, c))
+            } else if b >> 1 == u64::from(v.0) {
+                (b, (c, a))
+            } else if c >> 1 == u64::from(v.0) {
+                (c, (a, b))
+            } else {
+                continue;
+            };
+            links[(x & 1) as usize].push(edge);
+        }
+    }
+    links.map(|mut edges| {
+        edges.sort_unstable();
+        let boundary: Vec<(u64, u64)> = edges
+            .iter()
+            .filter(|&&(a, b)| edges.binary_search(&(b, a)).is_err())
+            .copied()
+            .collect();
+        let mut ends: Vec<u64> = boundary.iter().flat_map(|&(a, b)| [a, b]).collect();
+        ends.sort_unstable();
+        ends.dedup();
+        let at = |x: u64| ends.binary_search(&x).unwrap_or(0) as u32;
+        let mut parent: Vec<u32> = (0..ends.len() as u32).collect();
+        for &(a, b) in &boundary {
+            union(&mut parent, at(a), at(b));
+        }
+        (0..ends.len() as u32)
+            .filter(|&i| find(&mut parent, i) == i)
+            .count()
+    })
 }
 
 /// Kinds of the vertices a cut appended, as `Made` keeps them.
@@ -2551,4 +2695,47 @@ fn shared_positions(positions: &[DVec3]) -> Vec<bool> {
         }
     }
     shared
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tet(ids: [u32; 4]) -> Tet {
+        ids.map(VertexId)
+    }
+
+    /// Fans at tip 0 of tets on the positive side, taking the tip's copy where `copied`.
+    fn fans(tets: &[[u32; 4]], copied: &[[u32; 4]]) -> [usize; 2] {
+        let star = tets.iter().map(|&t| (tet(t), Side::Positive));
+        tip_fans(VertexId(0), star, &|u: VertexId, t: &Tet, _: Side| {
+            u.0 == 0 && copied.iter().any(|&c| tet(c) == *t)
+        })
+    }
+
+    #[test]
+    fn tets_around_a_tip_are_counted_in_boundary_fans() {
+        // One tet: its three faces at the tip close a single fan.
+        assert_eq!(fans(&[[0, 1, 2, 3]], &[]), [1, 0]);
+        // Two tets across a face at the tip: still one fan.
+        assert_eq!(fans(&[[0, 1, 2, 3], [0, 2, 1, 4]], &[]), [1, 0]);
+        // Two tets meeting only at the tip: pinched, two fans.
+        assert_eq!(fans(&[[0, 1, 2, 3], [0, 4, 5, 6]], &[]), [2, 0]);
+        // The same two tets, one taking the tip's copy: one fan each.
+        assert_eq!(fans(&[[0, 1, 2, 3], [0, 4, 5, 6]], &[[0, 4, 5, 6]]), [1, 1]);
+        // Across a face, one taking the copy: the face opens, one fan each.
+        assert_eq!(fans(&[[0, 1, 2, 3], [0, 2, 1, 4]], &[[0, 2, 1, 4]]), [1, 1]);
+        // A closed star (the tip inside the mesh): no boundary, no fan.
+        let octahedron = [
+            [0, 1, 2, 5],
+            [0, 2, 3, 5],
+            [0, 3, 4, 5],
+            [0, 4, 1, 5],
+            [0, 2, 1, 6],
+            [0, 3, 2, 6],
+            [0, 4, 3, 6],
+            [0, 1, 4, 6],
+        ];
+        assert_eq!(fans(&octahedron, &[]), [0, 0]);
+    }
 }
