@@ -71,8 +71,16 @@ impl Run {
         }
     }
 
+    /// The parts, found through faces and (as the cutter counts them) through vertices
+    /// alike.
     fn parts(&self) -> usize {
-        Components::of(self.cutter.mesh()).count
+        let parts = Components::of(self.cutter.mesh());
+        assert!(
+            Components::through_vertices(self.cutter.mesh()) == parts,
+            "{}: the components through vertices differ from those through faces",
+            self.name
+        );
+        parts.count
     }
 }
 

@@ -18,6 +18,52 @@ impl Components {
         Components { count, label }
     }
 
+    /// The components of `mesh` found through shared vertices, numbered as [`of`](Self::of)
+    /// numbers them: the same components wherever the star of each vertex is joined
+    /// through faces — in every mesh a cut leaves of a valid, embedded input (a manifold
+    /// boundary, no two tets overlapping: a vertex whose tets formed two groups touching
+    /// only there would be a pinched boundary vertex, which `TetMesh::validate` reports)
+    /// — and 20 to 30 times faster (no face is matched: 0.3 ms against 8-10 ms on
+    /// fandisk, 12 ms against 260-300 ms on fandisk-1m). Tets of an invalid mesh sharing
+    /// only an edge or a vertex are one component here, two for [`of`](Self::of).
+    pub fn through_vertices(mesh: &TetMesh) -> Components {
+        let mut roots = VertexRoots::of(mesh);
+        let mut number = vec![u32::MAX; mesh.nb_vertices()];
+        let mut count = 0u32;
+        let label = mesh
+            .tets()
+            .iter()
+            .map(|t| {
+                let r = roots.find(t[0].0) as usize;
+                if number[r] == u32::MAX {
+                    number[r] = count;
+                    count += 1;
+                }
+                number[r]
+            })
+            .collect();
+        Components {
+            count: count as usize,
+            label,
+        }
+    }
+
+    /// The number of components [`through_vertices`](Self::through_vertices) finds,
+    /// without labelling the tets.
+    pub fn count_through_vertices(mesh: &TetMesh) -> usize {
+        let mut roots = VertexRoots::of(mesh);
+        let mut seen = vec![false; mesh.nb_vertices()];
+        let mut count = 0;
+        for t in mesh.tets() {
+            let r = roots.find(t[0].0) as usize;
+            if !seen[r] {
+                seen[r] = true;
+                count += 1;
+            }
+        }
+        count
+    }
+
     /// Number of tets of each component.
     pub fn sizes(&self) -> Vec<usize> {
         let mut s = vec![0; self.count];
@@ -66,5 +112,71 @@ impl Components {
         (0..self.count)
             .filter_map(|k| self.extract(mesh, k))
             .collect()
+    }
+}
+
+/// Union-find over the vertices of a mesh, each tet's vertices joined: a root is the
+/// lowest vertex of its set.
+struct VertexRoots {
+    parent: Vec<u32>,
+}
+
+impl VertexRoots {
+    fn of(mesh: &TetMesh) -> VertexRoots {
+        let mut roots = VertexRoots {
+            parent: (0..mesh.nb_vertices() as u32).collect(),
+        };
+        for t in mesh.tets() {
+            let mut a = roots.find(t[0].0);
+            for v in &t[1..] {
+                let b = roots.find(v.0);
+                if a != b {
+                    let (low, high) = (a.min(b), a.max(b));
+                    roots.parent[high as usize] = low;
+                    a = low;
+                }
+            }
+        }
+        roots
+    }
+
+    /// The root of `v`'s set, halving the path on the way.
+    fn find(&mut self, mut v: u32) -> u32 {
+        while self.parent[v as usize] != v {
+            let up = self.parent[self.parent[v as usize] as usize];
+            self.parent[v as usize] = up;
+            v = up;
+        }
+        v
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::DVec3;
+
+    fn mesh(tets: Vec<[u32; 4]>, n: usize) -> TetMesh {
+        let p = (0..n)
+            .map(|i| DVec3::new(i as f64, (i * i % 7) as f64, (i * i * i % 11) as f64))
+            .collect();
+        TetMesh::from_parts(p, tets.into_iter().map(|t| t.map(VertexId)).collect())
+    }
+
+    #[test]
+    fn through_vertices_numbers_as_through_faces_where_stars_are_joined() {
+        // Two parts: tets 0 and 2 share a face, tet 1 is apart; vertex 9 is used by none,
+        // and no tet's first vertex is its lowest.
+        let m = mesh(vec![[3, 1, 2, 0], [7, 5, 6, 4], [8, 3, 2, 1]], 10);
+        let faces = Components::of(&m);
+        assert_eq!(faces.count, 2);
+        assert_eq!(faces.label, vec![0, 1, 0]);
+        assert_eq!(Components::through_vertices(&m), faces);
+        assert_eq!(Components::count_through_vertices(&m), 2);
+        // Tets sharing only an edge (an invalid mesh): one component through vertices.
+        let m = mesh(vec![[0, 1, 2, 3], [0, 1, 4, 5]], 6);
+        assert_eq!(Components::of(&m).count, 2);
+        assert_eq!(Components::through_vertices(&m).count, 1);
+        assert_eq!(Components::count_through_vertices(&m), 1);
     }
 }

@@ -6,6 +6,7 @@ use super::bvh::{Candidates, QueryBuffers, QueryOptions, TetBvh};
 use super::classify::{
     CrackTips, CutScratch, CutSession, NONE, OriginPositions, StateCache, TetClass, VertexOrigin,
 };
+use super::components::Components;
 use super::options::{CutError, CutOptions, Scheme};
 use super::report::{CutResult, CutStats, CutTimes, SplitRecord};
 use super::split::{Children, split_tet};
@@ -17,7 +18,7 @@ use super::unglue::{
 use crate::geom::{CutPolygon, DVec3, Sign};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::TET_EDGES;
-use crate::mesh::{Attribute, Attributes, FaceAdjacency, Tet, TetId, TetMesh, VertexId};
+use crate::mesh::{Attribute, Attributes, Tet, TetId, TetMesh, VertexId};
 use std::collections::HashSet;
 use std::time::{Duration, Instant};
 
@@ -844,7 +845,7 @@ impl Cutter {
         let t = Instant::now();
         let components = opts
             .count_components
-            .then(|| FaceAdjacency::new(&self.mesh).components().0);
+            .then(|| Components::count_through_vertices(&self.mesh));
         times.components = t.elapsed().as_secs_f64();
 
         let cut_points = origins

@@ -70,8 +70,9 @@ pub struct CutOptions {
     /// 0.4 gives a 1.17° smallest angle, 0.25 gives 0.44°). Values must be in
     /// [[`MIN_FACE_POINT_MARGIN`], 0.5].
     pub face_point_margin: f64,
-    /// Count the connected components after the cut (a pass over the whole mesh, timed on
-    /// its own). Default: true.
+    /// Count the connected components after the cut (a pass over the whole mesh's tets,
+    /// joining their vertices: [`super::Components::count_through_vertices`], timed on its
+    /// own). Default: true.
     pub count_components: bool,
     /// Phases with at least this many items (tets, edges) run on all cores, with results
     /// identical to one thread; 0 always, `usize::MAX` never. Default: 4096 (below it the

@@ -348,6 +348,15 @@ pub fn check_cut(
         if comps.count < 2 {
             return Err("a cut straight through left one part".into());
         }
+        if Components::through_vertices(after) != comps {
+            return Err("the components through vertices differ from those through faces".into());
+        }
+        if result.stats.components.is_some_and(|n| n != comps.count) {
+            return Err(format!(
+                "the cut counted {:?} components",
+                result.stats.components
+            ));
+        }
         let mut owner = vec![u32::MAX; after.nb_vertices()];
         for (t, tet) in after.tets().iter().enumerate() {
             for v in tet {

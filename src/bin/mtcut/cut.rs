@@ -120,7 +120,9 @@ pub struct Parts {
 
 impl Parts {
     pub fn of(mesh: &TetMesh) -> Parts {
-        let components = Components::of(mesh);
+        // Through shared vertices: a cut mesh is valid, where this finds the components
+        // through faces at a fraction of the cost.
+        let components = Components::through_vertices(mesh);
         let mut volumes = vec![0.0; components.count];
         for (t, &l) in components.label.iter().enumerate() {
             volumes[l as usize] += mesh.tet_volume(TetId::from_usize(t));
