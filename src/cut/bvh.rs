@@ -420,13 +420,25 @@ impl TetBvh {
 
 /// Nodes of the hierarchy over `n` tets: a leaf, or a node over two halves.
 fn subtree_nodes(n: usize) -> usize {
-    if n == 0 {
-        0
-    } else if n <= LEAF_SIZE {
-        1
-    } else {
-        1 + subtree_nodes(n / 2) + subtree_nodes(n - n / 2)
+    subtree_nodes_pair(n).0
+}
+
+/// The nodes over `n` and over `n + 1` tets: the halves of both are among `n / 2` and
+/// `n / 2 + 1` tets, so one step per level (the plain recursion visits every node).
+fn subtree_nodes_pair(n: usize) -> (usize, usize) {
+    let small = |k: usize| usize::from(k > 0);
+    if n < LEAF_SIZE {
+        return (small(n), small(n + 1));
     }
+    let (a, b) = subtree_nodes_pair(n / 2);
+    let even = n % 2 == 0;
+    let this = match (n <= LEAF_SIZE, even) {
+        (true, _) => 1,
+        (false, true) => 1 + 2 * a,
+        (false, false) => 1 + a + b,
+    };
+    let next = if even { 1 + a + b } else { 1 + 2 * b };
+    (this, next)
 }
 
 /// Subtrees over this many tets or more are built on both cores.
@@ -464,5 +476,24 @@ fn split(order: &mut [(DVec3, u32)], nodes: &mut [Node], id: u32, first: u32) {
     } else {
         split(left, left_nodes, id + 1, first);
         split(right, right_nodes, right_id, right_first);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn subtree_node_counts_follow_the_median_splits() {
+        fn plain(n: usize) -> usize {
+            match n {
+                0 => 0,
+                n if n <= LEAF_SIZE => 1,
+                n => 1 + plain(n / 2) + plain(n - n / 2),
+            }
+        }
+        for n in 0..5000 {
+            assert_eq!(subtree_nodes(n), plain(n), "{n} tets");
+        }
     }
 }
