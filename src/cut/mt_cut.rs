@@ -949,24 +949,23 @@ impl MtCutter {
                     early[v.idx() - nv]
                 }
             };
-            // Every tet holding a tip, with its side by position, and whether it is in the
-            // finest mesh (bit 0) and the coarsest (bit 1).
-            let mut at_tip: Vec<(VertexId, Tet, bool)> = Vec::new();
-            let mut levels: Vec<u8> = Vec::new();
-            let mut sides: Vec<Side> = Vec::new();
-            let mut owners: Vec<FragmentId> = Vec::new();
+            let mut at_tip: Vec<TipHolder> = Vec::new();
             for (k, class) in classes.iter().enumerate() {
                 if !class.touches_cut() {
                     continue;
                 }
                 let coarsest = mt.fragment_kind(mt.tet_destroyer(cand[k])) == FragmentKind::Drain;
-                let level = u8::from(finest[k]) | u8::from(coarsest) << 1;
+                let levels = u8::from(finest[k]) | u8::from(coarsest) << 1;
                 let mut see = |t: &Tet, side: Side| {
                     for &v in t.iter().filter(|&&v| turn.has(v)) {
-                        at_tip.push((v, *t, turn.in_wedge(v, t, side, &pos)));
-                        sides.push(side);
-                        levels.push(level);
-                        owners.push(mt.tet_creator(cand[k]));
+                        at_tip.push(TipHolder {
+                            tip: v,
+                            tet: *t,
+                            side,
+                            in_wedge: turn.in_wedge(v, t, side, &pos),
+                            levels,
+                            owner: mt.tet_creator(cand[k]),
+                        });
                     }
                 };
                 match child_of[k] {
@@ -988,60 +987,61 @@ impl MtCutter {
             // The first tet holding each face at a tip (tets of several levels may hold
             // it on one side): all tets on both sides of a face are joined.
             let mut by_face: HashMap<(VertexId, FaceKey), u32, FxBuild> = HashMap::default();
-            for (i, (v, t, _)) in at_tip.iter().enumerate() {
-                for f in faces_of(t).into_iter().filter(|f| f.contains(&v.0)) {
-                    by_face.entry((*v, f)).or_insert(i as u32);
+            for (i, h) in at_tip.iter().enumerate() {
+                for f in h.faces() {
+                    by_face.entry((h.tip, f)).or_insert(i as u32);
                 }
             }
-            for (i, (v, t, _)) in at_tip.iter().enumerate() {
-                for f in faces_of(t).into_iter().filter(|f| f.contains(&v.0)) {
-                    if let Some(&j) = by_face.get(&(*v, flip_face(f))) {
+            for (i, h) in at_tip.iter().enumerate() {
+                for f in h.faces() {
+                    if let Some(&j) = by_face.get(&(h.tip, flip_face(f))) {
                         if !on_crack(f.map(VertexId)) {
                             union(&mut parent, i as u32, j);
-                            union(&mut parent, i as u32, by_face[&(*v, f)]);
+                            union(&mut parent, i as u32, by_face[&(h.tip, f)]);
                         }
                     }
                 }
             }
             let mut mixed: HashMap<u32, [bool; 2], FxBuild> = HashMap::default();
-            for (i, &(_, _, w)) in at_tip.iter().enumerate() {
+            for (i, h) in at_tip.iter().enumerate() {
                 let r = find(&mut parent, i as u32);
-                mixed.entry(r).or_default()[usize::from(w)] = true;
+                mixed.entry(r).or_default()[usize::from(h.in_wedge)] = true;
             }
-            let mut forced: Vec<VertexId> = Vec::new();
-            for (i, &(v, t, w)) in at_tip.iter().enumerate() {
+            // Holders (indices into `at_tip`) of the tips a group kept against position.
+            let mut forced: Vec<usize> = Vec::new();
+            for (i, h) in at_tip.iter().enumerate() {
                 let r = find(&mut parent, i as u32);
-                let keep = w || mixed[&r] == [true, true];
-                if keep != w {
-                    forced.push(v);
+                let keep = h.in_wedge || mixed[&r] == [true, true];
+                if keep != h.in_wedge {
+                    forced.push(i);
                 }
-                keeps.insert((v, t), keep);
-                turn_groups.entry(v).or_default()[usize::from(keep)] = true;
+                keeps.insert((h.tip, h.tet), keep);
+                turn_groups.entry(h.tip).or_default()[usize::from(keep)] = true;
             }
             // A tip kept whole on a level where the cracks surround it would pinch that
             // level's boundary there (two fans of crack faces meeting at one point), which
             // the check of the fragments' floors and ceilings does not see: the finest and
             // coarsest meshes are checked here (as `Mt::validate` checks them), and such a
             // cut refused before the MT changes.
-            forced.sort_unstable();
-            forced.dedup();
+            forced.sort_unstable_by_key(|&i| at_tip[i].tip);
+            forced.dedup_by_key(|i| at_tip[*i].tip);
             // Other snapped vertices get a copy for the negative side when tets of both
             // sides and no straddling tet hold them (as decided below).
             let copy = |u: VertexId, t: &Tet, side: Side| match keeps.get(&(u, *t)) {
                 Some(&keep) => !keep,
                 None => side == Side::Negative && around.get(&u) == Some(&[true, true, false]),
             };
-            for &v in &forced {
+            for &i in &forced {
+                let v = at_tip[i].tip;
                 for (bit, name) in [(1, "finest"), (2, "coarsest")] {
-                    let star = (0..at_tip.len())
-                        .filter(|&i| levels[i] & bit != 0 && at_tip[i].0 == v)
-                        .map(|i| (at_tip[i].1, sides[i]));
-                    let fans = tip_fans(v, star, &copy);
+                    let star = at_tip.iter().filter(|h| h.levels & bit != 0 && h.tip == v);
+                    let Some(first) = star.clone().next() else {
+                        continue;
+                    };
+                    let fans = tip_fans(v, star.map(|h| (h.tet, h.side)), &copy);
                     if fans.iter().any(|&n| n > 1) {
-                        let i =
-                            (0..at_tip.len()).find(|&i| levels[i] & bit != 0 && at_tip[i].0 == v);
                         return Err(CutError::MtInconsistent {
-                            fragment: i.map_or(0, |i| owners[i].idx()),
+                            fragment: first.owner.idx(),
                             detail: format!(
                                 "its {name} mesh would be pinched at vertex {}: crack faces \
                                  around it in separate fans",
@@ -1734,6 +1734,28 @@ impl<'a> TurnTips<'a> {
             };
             a == Sign::Zero || a == s_old
         })
+    }
+}
+
+/// A tet holding a turning tip, among the tets the cut leaves (a split tet's children).
+struct TipHolder {
+    tip: VertexId,
+    tet: Tet,
+    side: Side,
+    /// Inside the wedge between the earlier crack and this one, by position.
+    in_wedge: bool,
+    /// Bit 0: the tet is in the finest mesh; bit 1: in the coarsest.
+    levels: u8,
+    /// The fragment that created it, named when the cut is refused.
+    owner: FragmentId,
+}
+
+impl TipHolder {
+    /// Its faces at the tip.
+    fn faces(&self) -> impl Iterator<Item = FaceKey> + '_ {
+        faces_of(&self.tet)
+            .into_iter()
+            .filter(|f| f.contains(&self.tip.0))
     }
 }
 
