@@ -123,7 +123,8 @@ typedef struct mtcut_live mtcut_live;
  * from several threads at once; the others need exclusive access. After its first cut a
  * mesh keeps what cutting it needs (a hierarchy over its tets, vertex scales, the crack
  * tips), so later cuts cost time in proportion to the tets they touch, not to the mesh;
- * `mtcut_mesh_set_vertices` drops it (rebuilt at the next cut).
+ * `mtcut_mesh_set_vertices` drops it (rebuilt at the next cut). Its connected components
+ * are found once, on the first request, and kept until it is cut.
  */
 typedef struct mtcut_mesh mtcut_mesh;
 
@@ -943,6 +944,8 @@ mtcut_status mtcut_mesh_quality(const struct mtcut_mesh *mesh,
 
 /**
  * Number of connected components (tets connected through shared faces) into `*count`.
+ * Found on the first call (a matching of the mesh's faces) and kept with the mesh until
+ * it is cut: later calls, and `mtcut_mesh_extract_component`, reuse them.
  *
  * # Safety
  * `mesh` must be a live mesh handle; `count` writable.

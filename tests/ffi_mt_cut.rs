@@ -315,6 +315,41 @@ fn a_turning_blade_swept_step_by_step_continues_its_crack() {
 }
 
 #[test]
+fn components_are_kept_until_the_mesh_is_cut() {
+    // A handle finds its components once and keeps them: moving the vertices leaves them,
+    // a clone carries them, a cut finds them again.
+    let m = cube();
+    assert_eq!(components(&m), 1);
+    let n = unsafe { mtcut_mesh_vertex_count(m.0) };
+    let mut xyz = vec![0.0; 3 * n];
+    ok(unsafe { mtcut_mesh_copy_vertices(m.0, xyz.as_mut_ptr(), n) });
+    ok(unsafe { mtcut_mesh_set_vertices(m.0, xyz.as_ptr(), n) });
+    assert_eq!(components(&m), 1);
+    let mut copy = ptr::null_mut();
+    ok(unsafe { mtcut_mesh_clone(m.0, &mut copy) });
+    let copy = Mesh(copy);
+    let mut s = cut_stats();
+    ok(unsafe { mtcut_mesh_cut(m.0, ACROSS.as_ptr(), 3, &mut s) });
+    assert_eq!(components(&m), 2);
+    for k in 0..2 {
+        let mut out = ptr::null_mut();
+        ok(unsafe { mtcut_mesh_extract_component(m.0, k, &mut out) });
+        let half = Mesh(out);
+        assert!((volume(&half) - 0.5).abs() < 1e-12);
+    }
+    assert_eq!(components(&copy), 1);
+    let mut out = ptr::null_mut();
+    refused(
+        unsafe { mtcut_mesh_extract_component(copy.0, 1, &mut out) },
+        MTCUT_STATUS_INVALID_ARGUMENT,
+        "mtcut_mesh_extract_component",
+        "the mesh has 1",
+    );
+    ok(unsafe { mtcut_mesh_cut(copy.0, ACROSS.as_ptr(), 3, &mut s) });
+    assert_eq!(components(&copy), 2);
+}
+
+#[test]
 fn a_mesh_keeps_its_cutter_between_cuts() {
     // The first cut prepares the hierarchy and scales (reported), later ones reuse them:
     // the result is the Rust `Cutter`'s, kept across the same cuts; an attribute edit

@@ -1,7 +1,7 @@
 //! What a host asks about a mesh: validity, volume, bounding box, boundary, element
 //! quality, connected components.
 
-use super::guard::{Out, run};
+use super::guard::{Out, deref, run};
 use super::mesh::{mesh_ref, mtcut_mesh};
 use super::status::{Failure, FfiResult, mtcut_status};
 use super::strings::StringOut;
@@ -224,6 +224,8 @@ pub unsafe extern "C" fn mtcut_mesh_quality(
 }
 
 /// Number of connected components (tets connected through shared faces) into `*count`.
+/// Found on the first call (a matching of the mesh's faces) and kept with the mesh until
+/// it is cut: later calls, and `mtcut_mesh_extract_component`, reuse them.
 ///
 /// # Safety
 /// `mesh` must be a live mesh handle; `count` writable.
@@ -234,8 +236,8 @@ pub unsafe extern "C" fn mtcut_mesh_component_count(
 ) -> mtcut_status {
     run("mtcut_mesh_component_count", || {
         // SAFETY: the caller's contract, forwarded to the checks.
-        let (mesh, count) = unsafe { (mesh_ref(mesh)?, Out::new(count, "count")?) };
-        count.write(mesh.adjacency().components().0);
+        let (mesh, count) = unsafe { (deref(mesh, "mesh")?, Out::new(count, "count")?) };
+        count.write(mesh.components().0);
         Ok(())
     })
 }
@@ -255,8 +257,8 @@ pub unsafe extern "C" fn mtcut_mesh_extract_component(
 ) -> mtcut_status {
     run("mtcut_mesh_extract_component", || {
         // SAFETY: the caller's contract, forwarded to the checks.
-        let (mesh, out) = unsafe { (mesh_ref(mesh)?, Out::new(out, "out")?) };
-        let (count, label) = mesh.adjacency().components();
+        let (handle, out) = unsafe { (deref(mesh, "mesh")?, Out::new(out, "out")?) };
+        let &(count, ref label) = handle.components();
         if component >= count {
             return Err(Failure::invalid(format!(
                 "component {component} does not exist: the mesh has {count}"
@@ -266,7 +268,7 @@ pub unsafe extern "C" fn mtcut_mesh_extract_component(
             .filter(|&t| label[t] as usize == component)
             .map(TetId::from_usize)
             .collect();
-        out.write(mtcut_mesh::boxed(mesh.submesh(&tets)?));
+        out.write(mtcut_mesh::boxed(handle.mesh().submesh(&tets)?));
         Ok(())
     })
 }
