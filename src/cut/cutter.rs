@@ -8,6 +8,7 @@ use super::classify::{
 };
 use super::components::Components;
 use super::options::{CutError, CutOptions, Scheme};
+use super::pockets;
 use super::report::{CutResult, CutStats, CutTimes, SplitRecord};
 use super::split::{Children, split_tet};
 use super::tables::{NEG, ON, POS, Side};
@@ -603,10 +604,21 @@ impl Cutter {
         star.build(tets, classes, &mut self.snapped_slot);
         snapped.clear();
         snapped.extend_from_slice(&star.vertices);
+        let mut in_cut: Vec<(usize, Side)> = Vec::new();
         loop {
             passes += 1;
             let t = Instant::now();
             if opts.scheme == Scheme::Lut {
+                // A cut continuing cracks decides as the MT cut does (see `pockets`).
+                if !opts.continue_cracks {
+                    let sides =
+                        pockets::in_cut_sides(self.mesh.positions(), polygon, tets, classes);
+                    if sides != in_cut {
+                        // A tet's side changed: every snapped vertex is planned again.
+                        redo = None;
+                        in_cut = sides;
+                    }
+                }
                 // A later pass examines only the vertices whose stars changed.
                 examine.clear();
                 match &redo {
@@ -618,11 +630,12 @@ impl Cutter {
                     ),
                 }
                 let mesh = &self.mesh;
+                let in_cut = &in_cut[..];
                 let pass =
                     |vertices: &[VertexId], links: &mut LinkSlots, plan: &mut PlanBuffers| {
                         Self::plan_pass(
-                            mesh, polygon, tets, classes, children, child_of, vertices, star,
-                            links, plan,
+                            mesh, polygon, tets, classes, children, child_of, in_cut, vertices,
+                            star, links, plan,
                         )
                     };
                 // Each vertex is planned from its own star: in chunks on both cores when
@@ -899,13 +912,18 @@ impl Cutter {
         classes: &[TetClass],
         children: &[Children],
         child_of: &[u32],
+        in_cut: &[(usize, Side)],
         examine: &[VertexId],
         star: &StarIndex,
         links: &mut LinkSlots,
         buffers: &mut PlanBuffers,
     ) -> Copies {
-        // The side of a whole candidate around a snapped vertex (`Side` of `unsplit_side`).
-        let whole_side = |k: usize| Self::unsplit_side(mesh, polygon, &tets[k], &classes[k].states);
+        // The side of a whole candidate around a snapped vertex (`Side` of `unsplit_side`),
+        // or, lying in the cut, the side `in_cut` gives it.
+        let whole_side = |k: usize| match in_cut.binary_search_by_key(&k, |&(j, _)| j) {
+            Ok(i) => in_cut[i].1,
+            Err(_) => Self::unsplit_side(mesh, polygon, &tets[k], &classes[k].states),
+        };
         let mut out = Copies::default();
         let PlanBuffers {
             around,
@@ -1001,8 +1019,9 @@ impl Cutter {
     }
 
     /// The side of a tet the tables leave whole but that touches the cut at a vertex: the
-    /// side of its other vertices; a tet with all four vertices snapped (a sliver lying in
-    /// the cut) goes to the side of its centroid.
+    /// side of its other vertices; a tet with all four vertices snapped (lying in the cut)
+    /// goes to the side of its centroid, unless its neighbours decide
+    /// ([`pockets::in_cut_sides`]).
     fn unsplit_side(mesh: &TetMesh, polygon: &CutPolygon, tet: &Tet, states: &[u8; 4]) -> Side {
         let present = (1u8 << states[0]) | (1 << states[1]) | (1 << states[2]) | (1 << states[3]);
         if present & (1 << POS) != 0 {

@@ -88,6 +88,7 @@ pub mod cutter;
 pub mod live;
 pub mod mt_cut;
 pub mod options;
+mod pockets;
 mod prefetch;
 pub mod report;
 pub mod roi;
