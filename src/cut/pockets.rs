@@ -47,11 +47,19 @@ pub(crate) fn in_cut_sides(
     tets: &[Tet],
     classes: &[TetClass],
 ) -> Vec<(usize, Side)> {
-    let on = |c: &TetClass| c.states.iter().filter(|&&s| s == ON).count();
-    let lying: Vec<usize> = (0..tets.len()).filter(|&k| on(&classes[k]) == 4).collect();
+    // Every candidate's states are read, once per plan pass: as one word each.
+    let all_on = u32::from_le_bytes([ON; 4]);
+    let lying: Vec<usize> = (0..tets.len())
+        .filter(|&k| u32::from_le_bytes(classes[k].states) == all_on)
+        .collect();
     if lying.is_empty() {
         return Vec::new();
     }
+    // States other than `ON`: the bytes of the word that differ from `all_on`.
+    let off = |c: &TetClass| {
+        let x = u32::from_le_bytes(c.states) ^ all_on;
+        ((((x & 0x7f7f_7f7f) + 0x7f7f_7f7f) | x) & 0x8080_8080).count_ones()
+    };
     let face = |t: &Tet, skip: usize| {
         let mut f = [0u32; 3];
         let mut m = 0;
@@ -80,11 +88,18 @@ pub(crate) fn in_cut_sides(
         next_to_lying[names[0] as usize] = true;
         next_to_lying[names[1] as usize] = true;
     }
+    // Their vertices: a face holding none is passed over without hashing it.
+    let mut corners: Vec<u32> = lying.iter().flat_map(|&k| tets[k].map(|v| v.0)).collect();
+    corners.sort_unstable();
+    corners.dedup();
     for (t, c) in tets.iter().zip(classes) {
-        if on(c) != 3 {
+        if off(c) != 1 {
             continue;
         }
         let j = c.states.iter().position(|&s| s != ON).unwrap_or(0);
+        if corners.binary_search(&t[(j + 1) % 4].0).is_err() {
+            continue;
+        }
         let side = match c.states[j] {
             POS => 0,
             NEG => 1,
@@ -110,4 +125,72 @@ pub(crate) fn in_cut_sides(
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::VertexId;
+
+    fn class(states: [u8; 4]) -> TetClass {
+        TetClass {
+            states,
+            cut_mask: 0,
+            face_mask: 0,
+            edges: [u32::MAX; 6],
+            faces: [u32::MAX; 4],
+        }
+    }
+
+    #[test]
+    fn a_tet_lying_in_the_cut_takes_the_side_its_neighbours_agree_on() {
+        // Tet 0 lies in the cut z = 0 (its corners snapped, its centroid below); tets 1-4
+        // hold one face of it each and a fourth vertex above or below.
+        let positions = vec![
+            DVec3::new(0.0, 0.0, -0.02),
+            DVec3::new(1.0, 0.0, -0.01),
+            DVec3::new(0.0, 1.0, 0.01),
+            DVec3::new(0.3, 0.3, -0.03),
+            DVec3::new(0.2, 0.2, 1.0),
+            DVec3::new(0.2, 0.2, -1.0),
+        ];
+        let polygon = CutPolygon::new(&[
+            DVec3::new(-5.0, -5.0, 0.0),
+            DVec3::new(5.0, -5.0, 0.0),
+            DVec3::new(0.0, 5.0, 0.0),
+        ])
+        .unwrap();
+        let t = |v: [u32; 4]| v.map(VertexId);
+        let lying = (t([0, 1, 2, 3]), class([ON; 4]));
+        let faces = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
+        let around = |fourth: [u32; 4]| -> (Vec<Tet>, Vec<TetClass>) {
+            let mut tets = vec![lying.0];
+            let mut classes = vec![lying.1];
+            for (f, x) in faces.iter().zip(fourth) {
+                tets.push(t([f[0], f[1], f[2], x]));
+                let s = if positions[x as usize].z > 0.0 {
+                    POS
+                } else {
+                    NEG
+                };
+                classes.push(class([ON, ON, ON, s]));
+            }
+            (tets, classes)
+        };
+        let (tets, classes) = around([4; 4]);
+        assert_eq!(
+            in_cut_sides(&positions, &polygon, &tets, &classes),
+            [(0, Side::Positive)]
+        );
+        // Neighbours on both sides, or all on its centroid's: it keeps its centroid's side.
+        for fourth in [[4, 4, 4, 5], [5; 4]] {
+            let (tets, classes) = around(fourth);
+            assert!(in_cut_sides(&positions, &polygon, &tets, &classes).is_empty());
+        }
+        // Next to another tet lying in the cut: left as it was.
+        let (mut tets, mut classes) = around([4; 4]);
+        tets[4] = t([0, 1, 2, 5]);
+        classes[4] = class([ON; 4]);
+        assert!(in_cut_sides(&positions, &polygon, &tets, &classes).is_empty());
+    }
 }
