@@ -1034,12 +1034,7 @@ impl Cutter {
         if present & (1 << NEG) != 0 {
             return Side::Negative;
         }
-        let c: DVec3 = tet.iter().map(|v| mesh.position(*v)).sum::<DVec3>() * 0.25;
-        if polygon.signed_distance(c) < 0.0 {
-            Side::Negative
-        } else {
-            Side::Positive
-        }
+        pockets::centroid_side(mesh.positions(), polygon, tet)
     }
 }
 

@@ -115,16 +115,24 @@ pub(crate) fn in_cut_sides(
         .iter()
         .enumerate()
         .filter(|&(i, _)| !next_to_lying[i])
-        .filter_map(|(i, &k)| {
-            let c = tets[k].iter().map(|v| positions[v.idx()]).sum::<DVec3>() * 0.25;
-            let centroid_negative = polygon.signed_distance(c) < 0.0;
-            match seen[i] {
-                [true, false] if centroid_negative => Some((k, Side::Positive)),
-                [false, true] if !centroid_negative => Some((k, Side::Negative)),
+        .filter_map(
+            |(i, &k)| match (seen[i], centroid_side(positions, polygon, &tets[k])) {
+                ([true, false], Side::Negative) => Some((k, Side::Positive)),
+                ([false, true], Side::Positive) => Some((k, Side::Negative)),
                 _ => None,
-            }
-        })
+            },
+        )
         .collect()
+}
+
+/// The side of a tet lying in the cut by default: its centroid's.
+pub(crate) fn centroid_side(positions: &[DVec3], polygon: &CutPolygon, tet: &Tet) -> Side {
+    let c = tet.iter().map(|v| positions[v.idx()]).sum::<DVec3>() * 0.25;
+    if polygon.signed_distance(c) < 0.0 {
+        Side::Negative
+    } else {
+        Side::Positive
+    }
 }
 
 #[cfg(test)]
