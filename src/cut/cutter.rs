@@ -65,6 +65,8 @@ pub struct Cutter {
     /// While a cut indexes its snapped vertices ([`StarIndex`]), the index of each; `NONE`
     /// for every other vertex (and for all once the index is built).
     snapped_slot: Vec<u32>,
+    /// A bit per vertex, zero between cuts: the scratch of [`pockets::enclosing_snapped`].
+    enclosure: Vec<u64>,
     /// Scratch of the copy planning ([`plan_by_parents`]).
     links: LinkSlots,
     buffers: CutBuffers,
@@ -288,6 +290,7 @@ impl Cutter {
             scratch: CutScratch::new(),
             state_cache: StateCache::default(),
             snapped_slot: Vec::new(),
+            enclosure: Vec::new(),
             links: LinkSlots::default(),
             buffers: CutBuffers::default(),
             options,
@@ -419,11 +422,13 @@ impl Cutter {
     /// The cut is planned in full before the mesh changes. A snapped vertex that copies
     /// cannot separate (a "pinched" one, see [`super::unglue`]) is left unsnapped: only the
     /// tets around it are classified and split again, and the plan checked again. This
-    /// keeps the result a manifold mesh. Every new tet's orientation is then checked
-    /// exactly at its vertices' rounded positions (with the look-up tables; the 1:17
-    /// scheme's output is not checked): a plane passing a vertex closer than the snapping
-    /// distance allows yet too close for floating point (a small `snap`, as a scalpel's)
-    /// can make a child flat once its points are rounded. Such a cut is planned again with
+    /// keeps the result a manifold mesh. So are, on a plain mesh, the snapped vertices that
+    /// would enclose a vertex just off the cut with its star (a part the exact plane does
+    /// not make). Every new tet's orientation is then checked exactly at its vertices'
+    /// rounded positions (with the look-up tables; the 1:17 scheme's output is not
+    /// checked): a plane passing a vertex closer than the snapping distance allows yet too
+    /// close for floating point (a small `snap`, as a scalpel's) can make a child flat
+    /// once its points are rounded. Such a cut is planned again with
     /// `snap` a hundred times larger, up to [`RETRY_SNAP`] (the vertex is then snapped
     /// onto the cut: no child near it; `stats.snap` says which was used), and refused
     /// ([`CutError::FlatChild`]) only when that still fails; the mesh is left unchanged
@@ -658,22 +663,35 @@ impl Cutter {
                     Some(r) => std::mem::take(&mut copies).merge(r, update),
                 };
             }
+            // Vertices to leave unsnapped: the pinched ones; once there are none, those
+            // enclosing a vertex just off the cut (see `pockets`).
+            let mut unsnapping = std::mem::take(&mut copies.pinched);
+            if unsnapping.is_empty() && opts.scheme == Scheme::Lut && !opts.continue_cracks {
+                unsnapping = pockets::enclosing_snapped(
+                    positions,
+                    &self.scales,
+                    polygon,
+                    tets,
+                    classes,
+                    snapped,
+                    &mut self.enclosure,
+                );
+            }
             times.unglue += t.elapsed().as_secs_f64();
-            if copies.pinched.is_empty() {
+            if unsnapping.is_empty() {
                 break;
             }
             let t = Instant::now();
-            let mut pinched = std::mem::take(&mut copies.pinched);
-            pinched.sort_unstable();
-            pinched.dedup();
-            let pinched = with_twins(pinched, snapped, positions);
-            let affected = unsnap(&mut session, positions, polygon, &pinched, tets, states);
-            unsnapped.extend_from_slice(&pinched);
-            snapped.retain(|v| pinched.binary_search(v).is_err());
+            unsnapping.sort_unstable();
+            unsnapping.dedup();
+            let unsnapping = with_twins(unsnapping, snapped, positions);
+            let affected = unsnap(&mut session, positions, polygon, &unsnapping, tets, states);
+            unsnapped.extend_from_slice(&unsnapping);
+            snapped.retain(|v| unsnapping.binary_search(v).is_err());
             let sub_tets: Vec<Tet> = affected.iter().map(|&k| tets[k]).collect();
             let sub_states: Vec<[u8; 4]> = affected.iter().map(|&k| states[k]).collect();
             let sub = session.classify(positions, &self.scales, &sub_tets, &sub_states, false);
-            let mut changed: Vec<VertexId> = pinched;
+            let mut changed: Vec<VertexId> = unsnapping;
             for (&k, class) in affected.iter().zip(sub) {
                 classes[k] = class;
                 child_of[k] = if class.is_split() {
