@@ -65,8 +65,9 @@ pub struct Cutter {
     /// While a cut indexes its snapped vertices ([`StarIndex`]), the index of each; `NONE`
     /// for every other vertex (and for all once the index is built).
     snapped_slot: Vec<u32>,
-    /// A bit per vertex, zero between cuts: the scratch of [`pockets::enclosing_snapped`].
-    enclosure: Vec<u64>,
+    /// Per vertex, the number of tets holding it, kept up to date by every cut, and the
+    /// scratch of [`pockets::enclosing_snapped`] ([`pockets::valences`]).
+    valence: Vec<[u32; 2]>,
     /// Scratch of the copy planning ([`plan_by_parents`]).
     links: LinkSlots,
     buffers: CutBuffers,
@@ -268,6 +269,7 @@ impl Cutter {
         super::classify::build_tables();
         let start = Instant::now();
         let bvh = TetBvh::build(mesh.positions(), &scales, mesh.tets());
+        let valence = pockets::valences(mesh.nb_vertices(), mesh.tets());
         let build_time = start.elapsed();
         let n = mesh.nb_tets();
         let cuts_applied = match mesh.cell_data.get(CUT_COLUMN) {
@@ -290,7 +292,7 @@ impl Cutter {
             scratch: CutScratch::new(),
             state_cache: StateCache::default(),
             snapped_slot: Vec::new(),
-            enclosure: Vec::new(),
+            valence,
             links: LinkSlots::default(),
             buffers: CutBuffers::default(),
             options,
@@ -423,8 +425,8 @@ impl Cutter {
     /// cannot separate (a "pinched" one, see [`super::unglue`]) is left unsnapped: only the
     /// tets around it are classified and split again, and the plan checked again. This
     /// keeps the result a manifold mesh. So are, on a plain mesh, the snapped vertices that
-    /// would enclose a vertex just off the cut with its star (a part the exact plane does
-    /// not make). Every new tet's orientation is then checked exactly at its vertices'
+    /// would enclose vertices just off the cut with their stars (a part the exact plane
+    /// does not make). Every new tet's orientation is then checked exactly at its vertices'
     /// rounded positions (with the look-up tables; the 1:17 scheme's output is not
     /// checked): a plane passing a vertex closer than the snapping distance allows yet too
     /// close for floating point (a small `snap`, as a scalpel's) can make a child flat
@@ -664,7 +666,7 @@ impl Cutter {
                 };
             }
             // Vertices to leave unsnapped: the pinched ones; once there are none, those
-            // enclosing a vertex just off the cut (see `pockets`).
+            // enclosing vertices just off the cut (see `pockets`).
             let mut unsnapping = std::mem::take(&mut copies.pinched);
             if unsnapping.is_empty() && opts.scheme == Scheme::Lut && !opts.continue_cracks {
                 unsnapping = pockets::enclosing_snapped(
@@ -674,7 +676,7 @@ impl Cutter {
                     tets,
                     classes,
                     snapped,
-                    &mut self.enclosure,
+                    &mut self.valence,
                 );
             }
             times.unglue += t.elapsed().as_secs_f64();
@@ -804,6 +806,7 @@ impl Cutter {
 
         let t = Instant::now();
         add_vertices(&mut self.mesh, &mut self.scales, new_positions, &origins);
+        self.valence.resize(self.mesh.nb_vertices(), [0; 2]);
         if let Some(tips) = self.tips.as_mut() {
             tips.insert_face_points(first, &origins);
         }
@@ -824,6 +827,12 @@ impl Cutter {
             let ch = &children[i as usize];
             let parent = cand[k];
             by_case[ch.case as usize] += 1;
+            for v in tets[k] {
+                self.valence[v.idx()][0] -= 1;
+            }
+            for v in ch.tets[..ch.len].iter().flatten() {
+                self.valence[v.idx()][0] += 1;
+            }
             self.mesh.tets_mut()[parent.idx()] = ch.tets[0];
             let first_extra = self.mesh.nb_tets();
             debug_assert_eq!(first_extra as u32, first_appended[k]);
@@ -861,6 +870,8 @@ impl Cutter {
             }
             self.mesh.point_data.push_copy(v.idx());
             origins.push(VertexOrigin::Copy { of: v });
+            self.valence.push([members.len() as u32, 0]);
+            self.valence[v.idx()][0] -= members.len() as u32;
             let all = self.mesh.tets_mut();
             for m in members {
                 for x in all[slot(m).idx()].iter_mut() {
@@ -870,6 +881,10 @@ impl Cutter {
                 }
             }
         }
+        debug_assert!(
+            self.valence == pockets::valences(self.mesh.nb_vertices(), self.mesh.tets()),
+            "vertex valences kept up to date"
+        );
         times.unglue += t.elapsed().as_secs_f64();
         times.cut = start.elapsed().as_secs_f64();
 

@@ -10,16 +10,21 @@
 //!   other side, and then it is joined to nothing on its own side: a single tet. Such a
 //!   tet now takes its neighbours' side ([`in_cut_sides`]). Over 300 random planes
 //!   straight through liver (default options, tests/cut_pockets.rs) the single-tet parts
-//!   went from 58 to 9; over another 300 from 59 to 7.
-//! * A vertex just off the plane, not snapped, whose neighbours are all snapped or
-//!   across cut edges is enclosed with its star (6 tets on fandisk-1m cut by z = 0). Some
-//!   of those snapped neighbours lie on its side of the exact plane (it lies inside their
-//!   hull, unless it is on the boundary): they are now left unsnapped
+//!   went from 58 to 9 (8 with the rule below); over another 300 from 59 to 7.
+//! * Vertices just off the plane, not snapped, whose other neighbours are all snapped or
+//!   across cut edges are enclosed with their stars (6 tets around one vertex on
+//!   fandisk-1m cut by z = 0; 15 tets around five vertices along a tooth of pinion). Some
+//!   of those snapped neighbours lie on their side of the exact plane (an interior vertex
+//!   lies inside its neighbours' hull): they are now left unsnapped
 //!   ([`enclosing_snapped`]), with their coincident copies on earlier cracks (as pinched
 //!   vertices are), or a face point on one lip of an old crack would lie inside the other
-//!   lip's face. Parts below 1e-5 of the volume over 300 planes through liver: 20 → 13
-//!   (the exact plane's own caps off liver's bumps among them); pinion 1 → 0; over 300
-//!   other planes fandisk 2 → 1, pinion 3 → 0, liver 28 → 19.
+//!   lip's face. Whether the cut's candidates hold every tet around a vertex is read from
+//!   the vertex valences the cutter keeps. Parts below 1e-5 of the volume over 300
+//!   planes through liver: 20 → 11 (the exact plane's own caps off liver's bumps among
+//!   them); pinion 1 → 0. Over 300 other planes, cuts leaving more parts than the same
+//!   cut with the smallest snap: fandisk 5 → 3, pinion 28 → 17, liver 40 → 16 (the
+//!   exact plane also makes parts there, caps along the boundary, which no rule here
+//!   removes).
 //!
 //! # Limits
 //!
@@ -27,10 +32,11 @@
 //!   continued step by step, such tets near the earlier crack are joined to their side
 //!   through one another, and deciding them by their other neighbours left a swept body
 //!   in one piece.
-//! * Several vertices off the plane, joined to one another, enclosed together (fandisk's
-//!   remaining part above: three) are not found: only one vertex's star is read.
-//! * Snapping the enclosed vertex instead bends the crack farther than its own snapping
-//!   distance: edges would cross C strictly inside it.
+//! * A group of more than [`MAX_GROUP`] vertices is left enclosed (taken for a side of a
+//!   thin body), as is a group whose snapped neighbours on its side lie closer to the
+//!   plane than [`MIN_UNSNAP`] of their scale.
+//! * Snapping the enclosed vertices instead bends the crack farther than their own
+//!   snapping distance: edges would cross C strictly inside it.
 //! * The MT cut, and the plain cut continuing cracks (an MT frontier, a scalpel), which
 //!   decides as the MT cut does, keep the centroid's side and the snapped vertices. The
 //!   MT cut's snap is at most [`super::mt_cut::MAX_MT_SNAP`] (1e-6 of a vertex's scale
@@ -38,7 +44,7 @@
 //!   than the exact plane.
 
 use super::classify::TetClass;
-use super::tables::{NEG, ON, POS, Side};
+use super::tables::{NEG, ON, OUT, POS, Side};
 use crate::geom::{CutPolygon, DVec3, Sign};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::EDGE_OF_VERTICES;
@@ -141,11 +147,10 @@ pub(crate) fn in_cut_sides(
 const MIN_UNSNAP: f64 = 1e-5;
 
 /// Per configuration (vertex states, two bits each, and cut-edge mask, as
-/// `TetClass::states` and `TetClass::cut_mask`), the corners off the cut (`NEG`, `POS`)
-/// that are closed next to a snapped one, bits 0-3: every other corner snapped or across
-/// a cut edge, one snapped; and those that are open, bits 4-7: another corner off the cut
-/// on their side, or across an edge not cut. Read once per candidate instead of branching
-/// per corner.
+/// `TetClass::states` and `TetClass::cut_mask`): the corners off the cut (`NEG`, `POS`),
+/// bits 0-3, and those of them a candidate joins to a vertex across an edge the cut does
+/// not cut or outside C (`OUT`), bits 4-7. Read once per candidate instead of branching
+/// per corner ([`enclosing_snapped`] reads every candidate's corners).
 static CORNERS: [u8; 256 * 64] = corner_table();
 
 const fn corner_table() -> [u8; 256 * 64] {
@@ -158,23 +163,17 @@ const fn corner_table() -> [u8; 256 * 64] {
         while j < 4 {
             let s = (packed >> (2 * j)) as u8 & 3;
             if s == NEG || s == POS {
-                let (mut closed, mut snapped) = (true, false);
+                bits |= 1 << j;
                 let mut i = 0;
                 while i < 4 {
                     if i != j {
                         let o = (packed >> (2 * i)) as u8 & 3;
                         let cut = mask & (1 << EDGE_OF_VERTICES[i][j]) != 0;
-                        if !(o == ON || (o ^ s == NEG ^ POS && cut)) {
-                            closed = false;
+                        if o == OUT || (o ^ s == NEG ^ POS && !cut) {
+                            bits |= 16 << j;
                         }
-                        snapped |= o == ON;
                     }
                     i += 1;
-                }
-                if !closed {
-                    bits |= 16 << j;
-                } else if snapped {
-                    bits |= 1 << j;
                 }
             }
             j += 1;
@@ -192,24 +191,41 @@ fn corners(c: &TetClass) -> u8 {
     CORNERS[usize::from(packed) | usize::from(c.cut_mask) << 8]
 }
 
+/// The most vertices a group enclosed together may have ([`enclosing_snapped`]): the
+/// pockets snapping makes are thin layers of a few vertices along the boundary; a larger
+/// group held only by candidates is a side of a thin body, which the exact plane cuts
+/// off too.
+const MAX_GROUP: usize = 32;
+
+/// Per vertex of `tets` (`n_vertices` of them): the number of tets holding it (the
+/// candidates of a cut hold every tet around a vertex when they hold that many), and
+/// [`enclosing_snapped`]'s scratch, zero. Side by side: the scratch is read with the
+/// valence, from one cache line (apart, the valences' reads were most of its time).
+pub(crate) fn valences(n_vertices: usize, tets: &[Tet]) -> Vec<[u32; 2]> {
+    let mut valence = vec![[0u32; 2]; n_vertices];
+    for v in tets.iter().flatten() {
+        valence[v.idx()][0] += 1;
+    }
+    valence
+}
+
 /// The snapped vertices (of `snapped`, sorted) to leave unsnapped so that no vertex just
-/// off the cut is enclosed with its star: a vertex off the cut (not `ON`) is enclosed when,
-/// in every candidate holding it, each other vertex is snapped or across a cut edge, and
-/// one of them is snapped (the crack then surrounds its star: a part of its own). Around
-/// an interior vertex the exact plane cannot do that (the vertex lies inside its
-/// neighbours' hull), so some snapped neighbour lies on its side: the snapped neighbours
-/// whose exact side is its own (the edges to them lie on its side of the exact plane) are
-/// returned, to be unsnapped. A vertex of the boundary whose snapped neighbours
-/// all lie beyond the plane is a cap the exact plane cuts off too: it returns nothing.
-/// A neighbour closer to the plane than [`MIN_UNSNAP`] of its scale stays snapped: the
-/// cut points on its edges would make children below a millionth of their parents'
-/// volume, or flat ones once rounded (a cut then refused).
+/// off the cut is enclosed with its star. Vertices off the cut (`NEG`, `POS`) joined by
+/// edges on their side make groups; a group is enclosed when the candidates hold every
+/// tet around its vertices (`valence`) and none of them joins a vertex of the group to a
+/// vertex off the group: one on its side outside it, or one across an edge the cut does
+/// not cut (outside C), or one outside C (`OUT`). The crack then surrounds the group's
+/// stars: a part of its own. Around interior vertices the exact plane cannot do that
+/// (they lie inside their neighbours' hull), so some snapped neighbour lies on their
+/// side: the snapped neighbours whose exact side is the group's (the edges to them lie on
+/// its side of the exact plane) are returned, to be unsnapped. A group on the boundary
+/// whose snapped neighbours all lie beyond the plane is a cap the exact plane cuts off
+/// too, as is a group of more than [`MAX_GROUP`] vertices: they return nothing. A
+/// neighbour closer to the plane than [`MIN_UNSNAP`] of its scale stays snapped: the cut
+/// points on its edges would make children below a millionth of their parents' volume,
+/// or flat ones once rounded (a cut then refused).
 ///
-/// A candidate holding the vertex and one off the cut on its side, or across an edge the
-/// cut does not cut (outside C), joins it to the rest of its side. Every tet around an
-/// enclosed vertex is a candidate (a neighbour through a face around it holds a snapped
-/// vertex or straddles the plane), so candidates alone decide. `bits`, a bit per vertex,
-/// is zero before and after.
+/// `valence` is as [`valences`] makes it: its scratch is zero before and after.
 pub(crate) fn enclosing_snapped(
     positions: &[DVec3],
     scales: &[f64],
@@ -217,64 +233,123 @@ pub(crate) fn enclosing_snapped(
     tets: &[Tet],
     classes: &[TetClass],
     snapped: &[VertexId],
-    bits: &mut Vec<u64>,
+    valence: &mut [[u32; 2]],
 ) -> Vec<VertexId> {
+    // The scratch's flags, above the number of candidates holding the vertex: a candidate
+    // joins it to a vertex off its group; it is a group member (its index below).
+    const OPEN: u32 = 1 << 31;
+    const MEMBER: u32 = 1 << 30;
+    const INDEX: u32 = MEMBER - 1;
     if snapped.is_empty() {
         return Vec::new();
     }
-    let words = positions.len().div_ceil(64);
-    if bits.len() < words {
-        bits.resize(words, 0);
-    }
-    let bit = |v: VertexId| (v.idx() / 64, 1u64 << (v.idx() % 64));
-    // Candidates holding a snapped vertex, where a vertex off the cut is closed: the
-    // vertices that may be enclosed, marked; then unmarked by any candidate where they
-    // are open. The classes (48 bytes each) are read once, into a byte per candidate.
+    let off = |s: u8| s == NEG || s == POS;
+    // The candidates holding each vertex off the cut, and whether one opens it (without
+    // branching on either: both are common and unpredictable).
     let all: Vec<u8> = classes.iter().map(corners).collect();
     for (t, &c) in tets.iter().zip(&all) {
-        for (j, &v) in t.iter().enumerate() {
-            let (w, b) = bit(v);
-            bits[w] |= b * u64::from((c >> j) & 1);
+        for (j, v) in t.iter().enumerate() {
+            let x = &mut valence[v.idx()][1];
+            *x = (*x + u32::from((c >> j) & 1)) | (OPEN * u32::from((c >> (4 + j)) & 1));
         }
     }
-    for (t, &c) in tets.iter().zip(&all) {
-        for (j, &v) in t.iter().enumerate() {
-            let (w, b) = bit(v);
-            bits[w] &= !(b * u64::from((c >> (4 + j)) & 1));
-        }
-    }
-    // The enclosed vertices (rare), from the candidates where they are closed.
-    let mut enclosed: Vec<(usize, usize)> = Vec::new();
-    for (k, (t, &c)) in tets.iter().zip(&all).enumerate() {
-        for (j, &v) in t.iter().enumerate() {
-            let (w, b) = bit(v);
-            if bits[w] & b & (u64::from((c >> j) & 1) * u64::MAX) != 0 {
-                enclosed.push((k, j));
+    // The vertices all of whose tets are candidates, none opening them: the members (a
+    // vertex on the cut has a count of 0, below its valence).
+    let mut members: Vec<VertexId> = Vec::new();
+    for t in tets {
+        for &v in t {
+            let [n, x] = &mut valence[v.idx()];
+            if *x == *n {
+                *x = MEMBER | members.len() as u32;
+                members.push(v);
             }
         }
     }
     let mut out: Vec<VertexId> = Vec::new();
-    for &(k, j) in &enclosed {
-        let side = if classes[k].states[j] == POS {
-            Sign::Positive
-        } else {
-            Sign::Negative
-        };
-        out.extend(
-            (0..4)
-                .filter(|&i| classes[k].states[i] == ON)
-                .map(|i| tets[k][i])
-                .filter(|u| snapped.binary_search(u).is_ok())
-                .filter(|u| {
-                    let p = positions[u.idx()];
-                    polygon.side(p) == side
-                        && polygon.signed_distance(p).abs() > MIN_UNSNAP * scales[u.idx()]
-                }),
-        );
+    if !members.is_empty() {
+        // Groups: members joined by edges on their side (union-find); a group with a
+        // member joined so to a vertex not a member is open.
+        let mut parent: Vec<u32> = (0..members.len() as u32).collect();
+        let mut opened = vec![false; members.len()];
+        fn root(parent: &mut [u32], mut i: u32) -> u32 {
+            while parent[i as usize] != i {
+                parent[i as usize] = parent[parent[i as usize] as usize];
+                i = parent[i as usize];
+            }
+            i
+        }
+        let member = |x: u32| (x & MEMBER != 0).then_some(x & INDEX);
+        for (t, c) in tets.iter().zip(classes) {
+            if t.iter().all(|v| valence[v.idx()][1] & MEMBER == 0) {
+                continue;
+            }
+            for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+                if !off(c.states[i]) || c.states[i] != c.states[j] {
+                    continue;
+                }
+                match (
+                    member(valence[t[i].idx()][1]),
+                    member(valence[t[j].idx()][1]),
+                ) {
+                    (Some(a), Some(b)) => {
+                        let (a, b) = (root(&mut parent, a), root(&mut parent, b));
+                        parent[a as usize] = b;
+                    }
+                    (Some(a), None) | (None, Some(a)) => opened[a as usize] = true,
+                    (None, None) => {}
+                }
+            }
+        }
+        let mut size = vec![0usize; members.len()];
+        for i in 0..members.len() as u32 {
+            let r = root(&mut parent, i) as usize;
+            size[r] += 1;
+            opened[r] |= opened[i as usize];
+        }
+        let enclosed: Vec<bool> = (0..members.len() as u32)
+            .map(|i| {
+                let r = root(&mut parent, i) as usize;
+                !opened[r] && size[r] <= MAX_GROUP
+            })
+            .collect();
+        // Their snapped neighbours on their side.
+        if enclosed.contains(&true) {
+            for (t, c) in tets.iter().zip(classes) {
+                if t.iter().all(|v| valence[v.idx()][1] & MEMBER == 0) {
+                    continue;
+                }
+                for j in (0..4).filter(|&j| off(c.states[j])) {
+                    let Some(m) = member(valence[t[j].idx()][1]) else {
+                        continue;
+                    };
+                    if !enclosed[m as usize] {
+                        continue;
+                    }
+                    let side = if c.states[j] == POS {
+                        Sign::Positive
+                    } else {
+                        Sign::Negative
+                    };
+                    out.extend(
+                        (0..4)
+                            .filter(|&i| c.states[i] == ON)
+                            .map(|i| t[i])
+                            .filter(|u| snapped.binary_search(u).is_ok())
+                            .filter(|u| {
+                                let p = positions[u.idx()];
+                                polygon.side(p) == side
+                                    && polygon.signed_distance(p).abs()
+                                        > MIN_UNSNAP * scales[u.idx()]
+                            }),
+                    );
+                }
+            }
+        }
     }
-    for &(k, j) in &enclosed {
-        let (w, b) = bit(tets[k][j]);
-        bits[w] &= !b;
+    for t in tets {
+        for v in t {
+            valence[v.idx()][1] = 0;
+        }
     }
     out.sort_unstable();
     out.dedup();
@@ -358,18 +433,22 @@ mod tests {
     }
 
     #[test]
-    fn a_vertex_enclosed_by_snapped_neighbours_on_its_side_unsnaps_them() {
+    fn vertices_enclosed_by_snapped_neighbours_on_their_side_unsnap_them() {
         // Vertex 0 on the body's top, just above the cut z = 0 and not snapped; its four
         // neighbours on the top (1-4) snapped, vertex 5 below across a cut edge: its star
-        // (tets 0, i, i + 1, 5) would be a part of its own. Vertex 5 has a neighbour on
-        // its side (vertex 6, below).
+        // (tets 0, i, i + 1, 5) would be a part of its own. Vertices 5 and 6, below, have
+        // a tet that is not a candidate (its valence counts it).
         let star = |ring_z: f64| {
             let mut p = vec![DVec3::new(0.0, 0.0, 0.02)];
             p.extend(
                 [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)]
                     .map(|(x, y)| DVec3::new(x, y, ring_z)),
             );
-            p.extend([DVec3::new(0.0, 0.0, -1.0), DVec3::new(0.5, 0.5, -2.0)]);
+            p.extend([
+                DVec3::new(0.0, 0.0, -1.0),
+                DVec3::new(0.5, 0.5, -2.0),
+                DVec3::new(0.5, 0.5, 0.5),
+            ]);
             p
         };
         let polygon = CutPolygon::new(&[
@@ -386,30 +465,45 @@ mod tests {
         let mut classes = vec![cut; 4];
         classes.push(class([NEG, ON, ON, NEG]));
         let snapped: Vec<VertexId> = (1..5).map(VertexId).collect();
-        let mut bits = Vec::new();
-        let mut run = |positions: &[DVec3], tets: &[Tet], classes: &[TetClass]| {
+        // `outside`: vertices with one more tet than the candidates hold.
+        let run = |z: f64, tets: &[Tet], classes: &[TetClass], outside: &[usize]| {
+            let positions = star(z);
             let scales = vec![1.0; positions.len()];
+            let mut valence = valences(positions.len(), tets);
+            for &v in outside {
+                valence[v][0] += 1;
+            }
             let out = enclosing_snapped(
-                positions, &scales, &polygon, tets, classes, &snapped, &mut bits,
+                &positions,
+                &scales,
+                &polygon,
+                tets,
+                classes,
+                &snapped,
+                &mut valence,
             );
-            assert!(bits.iter().all(|&b| b == 0), "scratch left clean");
+            assert!(valence.iter().all(|v| v[1] == 0), "scratch left clean");
             out
         };
         // The ring above the plane: it is unsnapped.
-        assert_eq!(run(&star(0.03), &tets, &classes), snapped);
+        assert_eq!(run(0.03, &tets, &classes, &[5, 6]), snapped);
         // The ring below: a cap the exact plane cuts off too, left alone; so is a ring too
         // close to the plane.
-        assert!(run(&star(-0.03), &tets, &classes).is_empty());
-        assert!(run(&star(1e-6), &tets, &classes).is_empty());
+        assert!(run(-0.03, &tets, &classes, &[5, 6]).is_empty());
+        assert!(run(1e-6, &tets, &classes, &[5, 6]).is_empty());
+        // Vertex 5 enclosed as well (all its tets candidates, with vertex 6): the ring
+        // below is the group {5, 6}'s neighbours on its side.
+        assert_eq!(run(-0.03, &tets, &classes, &[]), snapped);
         // The edge down not cut (outside C): vertex 0 keeps its side through it.
         let mut uncut = classes.clone();
         uncut[0].cut_mask = 0;
-        assert!(run(&star(0.03), &tets, &uncut).is_empty());
-        // A neighbour off the cut on its side (vertex 7, in one more tet) joins it to it.
-        let mut positions = star(0.03);
-        positions.push(DVec3::new(0.5, 0.5, 0.5));
+        assert!(run(0.03, &tets, &uncut, &[5, 6]).is_empty());
+        // A neighbour off the cut on its side (vertex 7, in one more candidate) joins it
+        // to the rest of its side, unless all of vertex 7's tets are candidates too: then
+        // the two are enclosed together.
         tets.push(t([0, 1, 2, 7]));
         classes.push(class([POS, ON, ON, POS]));
-        assert!(run(&positions, &tets, &classes).is_empty());
+        assert!(run(0.03, &tets, &classes, &[5, 6, 7]).is_empty());
+        assert_eq!(run(0.03, &tets, &classes, &[5, 6]), snapped);
     }
 }
