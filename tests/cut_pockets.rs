@@ -68,3 +68,26 @@ fn random_cuts_through_pinion_leave_no_vertex_enclosed() {
     let (_, small) = small_parts("pinion", 13, 300);
     assert_eq!(small, 0, "0 measured when the rule was made, 1 before it");
 }
+
+/// A cutter made for a scalpel (cracks continued: no vertex valences kept) and switched to
+/// the default options takes them up (their upkeep is checked against a recount after
+/// every cut in debug builds).
+#[test]
+fn switching_from_scalpel_options_keeps_valences() {
+    let mesh = mesh("fandisk");
+    let b = mesh.bbox();
+    let mut cutter = Cutter::new(mesh.clone(), CutOptions::SCALPEL).expect("cutter");
+    let c = b.center();
+    let first = square(c, DVec3::new(0.0, 0.0, 1.0), 0.2 * b.diagonal());
+    cutter.cut(&first).expect("a scalpel's cut");
+    cutter
+        .set_options(CutOptions::DEFAULT.with_count_components(false))
+        .expect("options");
+    for normal in [DVec3::new(1.0, 0.0, 0.0), DVec3::new(0.0, 1.0, 0.2)] {
+        let polygon = square(c, normal.normalize(), 2.0 * b.diagonal());
+        cutter.cut(&polygon).expect("a cut through");
+        let report = cutter.mesh().validate();
+        assert!(report.is_valid(), "{report}");
+    }
+    assert!(Components::of(cutter.mesh()).count >= 4, "cut in four");
+}

@@ -66,7 +66,9 @@ pub struct Cutter {
     /// for every other vertex (and for all once the index is built).
     snapped_slot: Vec<u32>,
     /// Per vertex, the number of tets holding it, kept up to date by every cut, and the
-    /// scratch of [`pockets::enclosing_snapped`] ([`pockets::valences`]).
+    /// scratch of [`pockets::enclosing_snapped`] ([`pockets::valences`]); empty while the
+    /// options continue cracks (an MT frontier, a scalpel: the rule is not applied, and a
+    /// scalpel step does not pay for the upkeep).
     valence: Vec<[u32; 2]>,
     /// Scratch of the copy planning ([`plan_by_parents`]).
     links: LinkSlots,
@@ -269,7 +271,11 @@ impl Cutter {
         super::classify::build_tables();
         let start = Instant::now();
         let bvh = TetBvh::build(mesh.positions(), &scales, mesh.tets());
-        let valence = pockets::valences(mesh.nb_vertices(), mesh.tets());
+        let valence = if options.continue_cracks {
+            Vec::new()
+        } else {
+            pockets::valences(mesh.nb_vertices(), mesh.tets())
+        };
         let build_time = start.elapsed();
         let n = mesh.nb_tets();
         let cuts_applied = match mesh.cell_data.get(CUT_COLUMN) {
@@ -328,6 +334,11 @@ impl Cutter {
     pub fn set_options(&mut self, options: CutOptions) -> Result<(), CutError> {
         options.check()?;
         self.options = options;
+        if options.continue_cracks {
+            self.valence = Vec::new();
+        } else if self.valence.is_empty() {
+            self.valence = pockets::valences(self.mesh.nb_vertices(), self.mesh.tets());
+        }
         Ok(())
     }
 
@@ -357,6 +368,9 @@ impl Cutter {
     pub fn reserve(&mut self, tets: usize, vertices: usize) {
         self.mesh.reserve(tets, vertices);
         self.scales.reserve(vertices);
+        if !self.valence.is_empty() {
+            self.valence.reserve(vertices);
+        }
         self.bvh.reserve_tets(self.mesh.nb_tets() + tets);
         self.reserve_scratch(self.mesh.nb_vertices() + vertices);
     }
@@ -366,7 +380,10 @@ impl Cutter {
     /// spare time between cuts keeps reallocation (a copy of every array) out of them.
     pub fn keep_room(&mut self, fraction: f64) {
         let (tets, vertices) = self.mesh.spare();
-        let vertices = vertices.min(self.scales.capacity() - self.scales.len());
+        let mut vertices = vertices.min(self.scales.capacity() - self.scales.len());
+        if !self.valence.is_empty() {
+            vertices = vertices.min(self.valence.capacity() - self.valence.len());
+        }
         let want_tets = (self.mesh.nb_tets() as f64 * fraction).ceil() as usize;
         let want_vertices = (self.mesh.nb_vertices() as f64 * fraction).ceil() as usize;
         if tets < want_tets || vertices < want_vertices {
@@ -668,7 +685,11 @@ impl Cutter {
             // Vertices to leave unsnapped: the pinched ones; once there are none, those
             // enclosing vertices just off the cut (see `pockets`).
             let mut unsnapping = std::mem::take(&mut copies.pinched);
-            if unsnapping.is_empty() && opts.scheme == Scheme::Lut && !opts.continue_cracks {
+            if unsnapping.is_empty()
+                && opts.scheme == Scheme::Lut
+                && !opts.continue_cracks
+                && !self.valence.is_empty()
+            {
                 unsnapping = pockets::enclosing_snapped(
                     positions,
                     &self.scales,
@@ -806,7 +827,10 @@ impl Cutter {
 
         let t = Instant::now();
         add_vertices(&mut self.mesh, &mut self.scales, new_positions, &origins);
-        self.valence.resize(self.mesh.nb_vertices(), [0; 2]);
+        let keep_valences = !self.valence.is_empty();
+        if keep_valences {
+            self.valence.resize(self.mesh.nb_vertices(), [0; 2]);
+        }
         if let Some(tips) = self.tips.as_mut() {
             tips.insert_face_points(first, &origins);
         }
@@ -827,11 +851,22 @@ impl Cutter {
             let ch = &children[i as usize];
             let parent = cand[k];
             by_case[ch.case as usize] += 1;
-            for v in tets[k] {
-                self.valence[v.idx()][0] -= 1;
-            }
-            for v in ch.tets[..ch.len].iter().flatten() {
-                self.valence[v.idx()][0] += 1;
+            // Valences: the parent's corners (scattered in memory) are updated once each,
+            // by the number of children holding them less one; the new points (appended
+            // together) as the children use them.
+            if keep_valences {
+                let corners = tets[k];
+                let mut kept = [0u32; 4];
+                for v in ch.tets[..ch.len].iter().flatten() {
+                    match corners.iter().position(|c| c == v) {
+                        Some(i) => kept[i] += 1,
+                        None => self.valence[v.idx()][0] += 1,
+                    }
+                }
+                for (c, n) in corners.iter().zip(kept) {
+                    let x = &mut self.valence[c.idx()][0];
+                    *x = *x + n - 1;
+                }
             }
             self.mesh.tets_mut()[parent.idx()] = ch.tets[0];
             let first_extra = self.mesh.nb_tets();
@@ -870,8 +905,10 @@ impl Cutter {
             }
             self.mesh.point_data.push_copy(v.idx());
             origins.push(VertexOrigin::Copy { of: v });
-            self.valence.push([members.len() as u32, 0]);
-            self.valence[v.idx()][0] -= members.len() as u32;
+            if keep_valences {
+                self.valence.push([members.len() as u32, 0]);
+                self.valence[v.idx()][0] -= members.len() as u32;
+            }
             let all = self.mesh.tets_mut();
             for m in members {
                 for x in all[slot(m).idx()].iter_mut() {
@@ -882,7 +919,8 @@ impl Cutter {
             }
         }
         debug_assert!(
-            self.valence == pockets::valences(self.mesh.nb_vertices(), self.mesh.tets()),
+            !keep_valences
+                || self.valence == pockets::valences(self.mesh.nb_vertices(), self.mesh.tets()),
             "vertex valences kept up to date"
         );
         times.unglue += t.elapsed().as_secs_f64();
