@@ -370,6 +370,16 @@ pub(crate) fn centroid_side(positions: &[DVec3], polygon: &CutPolygon, tet: &Tet
 mod tests {
     use super::*;
 
+    /// A triangle in the plane z = 0, covering the tests' vertices.
+    fn plane_z0() -> CutPolygon {
+        CutPolygon::new(&[
+            DVec3::new(-5.0, -5.0, 0.0),
+            DVec3::new(5.0, -5.0, 0.0),
+            DVec3::new(0.0, 5.0, 0.0),
+        ])
+        .unwrap()
+    }
+
     fn class(states: [u8; 4]) -> TetClass {
         TetClass {
             states,
@@ -392,12 +402,7 @@ mod tests {
             DVec3::new(0.2, 0.2, 1.0),
             DVec3::new(0.2, 0.2, -1.0),
         ];
-        let polygon = CutPolygon::new(&[
-            DVec3::new(-5.0, -5.0, 0.0),
-            DVec3::new(5.0, -5.0, 0.0),
-            DVec3::new(0.0, 5.0, 0.0),
-        ])
-        .unwrap();
+        let polygon = plane_z0();
         let t = |v: [u32; 4]| v.map(VertexId);
         let lying = (t([0, 1, 2, 3]), class([ON; 4]));
         let faces = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
@@ -451,12 +456,7 @@ mod tests {
             ]);
             p
         };
-        let polygon = CutPolygon::new(&[
-            DVec3::new(-5.0, -5.0, 0.0),
-            DVec3::new(5.0, -5.0, 0.0),
-            DVec3::new(0.0, 5.0, 0.0),
-        ])
-        .unwrap();
+        let polygon = plane_z0();
         let t = |v: [u32; 4]| v.map(VertexId);
         let mut tets: Vec<Tet> = (0..4).map(|i| t([0, 1 + i, 1 + (i + 1) % 4, 5])).collect();
         tets.push(t([5, 1, 2, 6]));
