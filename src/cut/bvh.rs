@@ -63,6 +63,9 @@ pub struct QueryOptions<'c> {
     pub tips: Option<(&'c CrackTips, f64)>,
     /// Vertices of earlier cracks ([`StateClassifier::with_crack_vertices`]; none: `None`).
     pub crack: Option<&'c [bool]>,
+    /// Vertices counting as lying in the plane, and the farthest of them from it
+    /// ([`StateClassifier::with_glued`]; none: `None`).
+    pub glued: Option<(&'c [bool], f64)>,
 }
 
 /// What a query found: candidate tets with their vertex states, and how many tets it
@@ -105,6 +108,8 @@ struct Query<'a> {
     band: f64,
     /// Rounding slack of the floating-point box tests, at the scene's coordinate scale.
     slack: f64,
+    /// How far from the plane a glued vertex lies at most (0: none).
+    glue_reach: f64,
 }
 
 impl TetBvh {
@@ -230,6 +235,7 @@ impl TetBvh {
             contour_band,
             tips,
             crack,
+            glued,
         } = options;
         out.tets.clear();
         out.states.clear();
@@ -249,6 +255,11 @@ impl TetBvh {
         if let Some(crack) = crack {
             states = states.with_crack_vertices(crack);
         }
+        let mut glue_reach = 0.0;
+        if let Some((glued, reach)) = glued {
+            states = states.with_glued(glued, reach);
+            glue_reach = reach;
+        }
         let q = Query {
             positions,
             scales,
@@ -261,6 +272,7 @@ impl TetBvh {
             reach,
             band: contour_band,
             slack: 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element()),
+            glue_reach,
         };
         cache.begin(positions.len());
         if parallel {
@@ -274,7 +286,7 @@ impl TetBvh {
     /// by the largest snapping distance below it.
     #[inline]
     fn node_may_touch(&self, q: &Query<'_>, n: &Node) -> bool {
-        let plane_margin = q.reach * n.max_scale + q.slack;
+        let plane_margin = q.reach * n.max_scale + q.slack + q.glue_reach;
         let r = 2.0 * plane_margin + q.band * n.max_scale;
         let b = &n.bbox;
         if b.min.x > q.cbox.max.x + r

@@ -325,6 +325,8 @@ pub struct StateClassifier<'a> {
     /// Per vertex: whether it lies on an earlier crack
     /// ([`with_crack_vertices`](Self::with_crack_vertices)).
     crack: Option<&'a [bool]>,
+    /// Per vertex: whether it counts as lying in the plane ([`with_glued`](Self::with_glued)).
+    glued: Option<&'a [bool]>,
 }
 
 impl<'a> StateClassifier<'a> {
@@ -349,6 +351,7 @@ impl<'a> StateClassifier<'a> {
             tip_reach: 0.0,
             max_scale,
             crack: None,
+            glued: None,
         }
     }
 
@@ -397,6 +400,25 @@ impl<'a> StateClassifier<'a> {
         self
     }
 
+    /// Vertices with `glued[v]` count as lying in the plane wherever they are (their
+    /// state is that of their projection onto it: on the cut inside C and its contour
+    /// band, [`OUT`] outside); `reach` is the farthest of them from the plane. For a body
+    /// that moved between two steps of a blade in one plane ([`super::live`]): the
+    /// vertices of the last steps' crack were made in that plane but the motion has moved
+    /// them off it, by amounts no snapping distance allows, so the new step would meet
+    /// that crack's tips and lips on either side of its plane, differently on each level.
+    pub fn with_glued(mut self, glued: &'a [bool], reach: f64) -> Self {
+        self.glued = Some(glued);
+        self.far = self.far.max(reach);
+        self
+    }
+
+    /// Whether `v` counts as lying in the plane ([`with_glued`](Self::with_glued)).
+    #[inline]
+    fn is_glued(&self, v: VertexId) -> bool {
+        self.glued.is_some_and(|g| g.get(v.idx()) == Some(&true))
+    }
+
     /// Whether `v` is a crack tip within the tip reach of the plane (`d` its distance).
     #[inline]
     fn tip_near(&self, v: VertexId, d: f64, scale: f64) -> bool {
@@ -407,6 +429,9 @@ impl<'a> StateClassifier<'a> {
     #[inline(always)]
     pub fn vertex(&self, v: VertexId, p: DVec3, scale: f64) -> u8 {
         let d = self.normal.dot(p) - self.offset;
+        if self.is_glued(v) {
+            return self.near(v, p - self.normal * d, scale);
+        }
         let fast = self.snap.distance(scale).max(self.filter);
         if d.abs() <= fast || self.tip_near(v, d, scale) {
             self.near(v, p, scale)
@@ -445,7 +470,7 @@ impl<'a> StateClassifier<'a> {
     #[cold]
     #[inline(never)]
     fn near(&self, v: VertexId, p: DVec3, scale: f64) -> u8 {
-        let crack = self.crack.is_some_and(|c| c.get(v.idx()) == Some(&true));
+        let crack = self.crack.is_some_and(|c| c.get(v.idx()) == Some(&true)) || self.is_glued(v);
         let state = vertex_state_in_band(self.polygon, self.snap, self.band, crack, p, scale);
         if state != ON && self.tip_near(v, self.polygon.signed_distance(p), scale) {
             let reach = self.tip_reach * scale;
@@ -1073,5 +1098,45 @@ fn origin_position(positions: &[DVec3], origin: &VertexOrigin) -> DVec3 {
                 + positions[v[2].idx()] * w[2]
         }
         VertexOrigin::Copy { of } => positions[of.idx()],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Aabb;
+
+    /// Glued vertices take the state of their projection onto the plane (on the cut inside
+    /// C, `OUT` outside), on either side and through the tet classification's fast path;
+    /// the others keep their exact sides.
+    #[test]
+    fn glued_vertices_count_as_lying_in_the_plane() {
+        let c = CutPolygon::new(&[
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ])
+        .expect("square");
+        let positions = [
+            DVec3::new(0.5, 0.5, 1e-3),
+            DVec3::new(0.5, 0.5, -1e-3),
+            DVec3::new(2.0, 0.5, 1e-3),
+            DVec3::new(0.5, 0.5, 1e-3),
+        ];
+        let scales = [1.0; 4];
+        let glued = [true, true, true, false];
+        let bounds = Aabb::from_points(&positions);
+        let snap = Tolerance { relative: 1e-6 };
+        let plain = StateClassifier::new(&c, snap, &bounds, 1.0);
+        let glue = plain.with_glued(&glued, 1e-3);
+        let tet = [0, 1, 2, 3].map(VertexId);
+        assert_eq!(plain.tet(&positions, &scales, &tet), [POS, NEG, POS, POS]);
+        assert_eq!(glue.tet(&positions, &scales, &tet), [ON, ON, OUT, POS]);
+        for (v, expected) in [(0, ON), (1, ON), (2, OUT), (3, POS)] {
+            let id = VertexId(v);
+            assert_eq!(glue.vertex(id, positions[v as usize], 1.0), expected);
+            assert_eq!(glue.pool_vertex(&positions, &scales, id), expected);
+        }
     }
 }

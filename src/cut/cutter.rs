@@ -84,6 +84,10 @@ pub struct Cutter {
     /// takes them (`StateClassifier::with_crack_vertices`), kept up to date with the
     /// vertices this cutter's cuts add. `None` for a plain mesh.
     crack: Option<Vec<bool>>,
+    /// During [`cut_glued`](Self::cut_glued): per vertex, whether it counts as lying in the
+    /// polygon's plane, and the farthest of those from it.
+    glued: Vec<bool>,
+    glue_reach: Option<f64>,
 }
 
 /// The lists a cut fills, kept from one cut to the next (cleared, their room kept): a cold
@@ -306,6 +310,8 @@ impl Cutter {
             build_time,
             tips: Some(CrackTips::default()),
             crack: None,
+            glued: Vec::new(),
+            glue_reach: None,
         };
         cutter.reserve_scratch(cutter.mesh.nb_vertices());
         cutter
@@ -467,6 +473,34 @@ impl Cutter {
         }
     }
 
+    /// [`cut`](Self::cut), the vertices `glued` counting as lying in the polygon's plane
+    /// wherever they are ([`StateClassifier::with_glued`](super::classify::StateClassifier::with_glued)): the
+    /// frontier-first step of a blade continuing, in its plane, a crack that the body's
+    /// motion has moved off it ([`super::live`]), decided as the MT cut decides it
+    /// ([`MtCutter::cut_deformed`](super::MtCutter::cut_deformed)).
+    pub(crate) fn cut_glued(
+        &mut self,
+        polygon: &CutPolygon,
+        glued: &[VertexId],
+    ) -> Result<CutResult, CutError> {
+        if glued.is_empty() {
+            return self.cut(polygon);
+        }
+        let mut flags = std::mem::take(&mut self.glued);
+        flags.clear();
+        flags.resize(self.mesh.nb_vertices(), false);
+        let mut reach = 0.0f64;
+        for &v in glued {
+            flags[v.idx()] = true;
+            reach = reach.max(polygon.signed_distance(self.mesh.position(v)).abs());
+        }
+        self.glued = flags;
+        self.glue_reach = Some(reach);
+        let result = self.cut(polygon);
+        self.glue_reach = None;
+        result
+    }
+
     /// [`cut`](Self::cut) with these options.
     fn cut_with(&mut self, polygon: &CutPolygon, opts: CutOptions) -> Result<CutResult, CutError> {
         let mut buffers = std::mem::take(&mut self.buffers);
@@ -527,6 +561,7 @@ impl Cutter {
                     .filter(|_| opts.continue_cracks)
                     .map(|t| (t, super::mt_cut::tip_reach(&opts))),
                 crack: self.crack.as_deref(),
+                glued: self.glue_reach.map(|r| (&self.glued[..], r)),
             },
             found,
         );

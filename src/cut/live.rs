@@ -47,12 +47,24 @@
 //!   the polygon mapped by the affine map that best fits the deformation around it
 //!   ([`PendingReport::folded`]); the frontier's cut then does not map back, and the
 //!   current mesh is replaced by the extraction.
-//! * A body moving *between* the steps of one incision: the last step's crack tips on the
-//!   coarser levels, placed by combinations of moved vertices, no longer lie in the next
-//!   sweep's plane, and a cut of a deformed body keeps no record for the next step to
-//!   turn from (see [`super::mt_cut`]'s limits): the MT refuses that step's cut, which
-//!   [`process_pending`](LiveMt::process_pending) drops and reports
-//!   ([`PendingReport::refused`]), the current mesh extracted again without it.
+//! * A body moving *between* the steps of one incision: the vertices the last steps made
+//!   (their crack's lips and tips, on every level) were made in the blade's plane, but the
+//!   motion has moved them off it by more than any snapping distance, so the next step
+//!   would meet that crack on either side of its plane, differently on each level (the MT
+//!   refused such steps). When the body has moved since the last cut given in a plane, a
+//!   cut given in the same plane takes the vertices the cuts in it made or duplicated as
+//!   lying in it (`StateClassifier::with_glued`: their state is that of their projection
+//!   onto it), the frontier-first cut and the MT cut alike, so the step continues the crack
+//!   and maps back. Measured (tests/mt_live.rs, and blades crossing the shared meshes in 16
+//!   steps while the bend grows by 2 % to 100 % of its first amount per step, or swings by
+//!   30 %): the only steps refused were a fold's fallback cut at rest and a step after one
+//!   (that cut's crack does not lie in the plane: nothing is glued in it after); before,
+//!   the liver refused steps at the gentlest motion. A blade
+//!   *turning* between the steps of a moving body is still refused at some steps: a cut of
+//!   a deformed body keeps no record for the next step to turn from (see
+//!   [`super::mt_cut`]'s limits); [`process_pending`](LiveMt::process_pending) drops such a
+//!   cut and reports it ([`PendingReport::refused`]), the current mesh extracted again
+//!   without it.
 //! * A queued cut is processed whole: [`process_pending`](LiveMt::process_pending) checks
 //!   its budget between cuts, so it may overrun by one cut (the DAG update of a cut is one
 //!   step over all its fragments, [`super::mt_cut`]).
@@ -205,6 +217,28 @@ pub struct LiveMt {
     /// The rest positions of a frontier-first cut's new vertices (a deformed body's), kept
     /// for the next cut so that it does not allocate them.
     new_rest: OriginPositions,
+    /// The planes cuts were given in, each once: the steps of a blade moved in its own
+    /// plane share one.
+    planes: Vec<CutPlane>,
+}
+
+/// A plane cuts of a live model were given in, and the vertices they made in it: when the
+/// body has moved since the last of them, a cut given in the plane takes those vertices as
+/// lying in it (`StateClassifier::with_glued`), the MT cut and the frontier-first cut alike.
+struct CutPlane {
+    /// Unit normal and a point.
+    normal: DVec3,
+    point: DVec3,
+    /// A cut given in it was made at rest by another polygon (a fold, see the limits): its
+    /// crack does not lie in the plane, so nothing is glued in it any more.
+    broken: bool,
+    /// The MT vertices the cuts given in it made or duplicated, and the positions' epoch
+    /// of the last of those cuts on the MT.
+    mt: Vec<VertexId>,
+    mt_epoch: u64,
+    /// The same for the current mesh's vertices and frontier-first cuts.
+    current: Vec<VertexId>,
+    current_epoch: u64,
 }
 
 impl LiveMt {
@@ -227,6 +261,7 @@ impl LiveMt {
             epoch: 0,
             placement: None,
             new_rest: OriginPositions::default(),
+            planes: Vec::new(),
             cutter,
             resolution: *resolution,
             current,
@@ -314,7 +349,11 @@ impl LiveMt {
         let start = Instant::now();
         self.freeze_pending();
         let n = self.rest.len();
-        let r = self.current.cut(polygon)?;
+        let glued = match self.plane_of(polygon).map(|k| &self.planes[k]) {
+            Some(p) if self.deformed && p.current_epoch != self.epoch => &p.current[..],
+            _ => &[],
+        };
+        let r = self.current.cut_glued(polygon, glued)?;
         let added = if self.at_rest {
             &self.current.mesh().positions()[n..]
         } else {
@@ -324,6 +363,12 @@ impl LiveMt {
         debug_assert!(!self.at_rest || added == origin_positions(&self.rest, &r.origins));
         self.rest.extend_from_slice(added);
         self.mt_vertex.resize(self.rest.len(), VertexId::INVALID);
+        let (k, epoch) = (self.plane_index(polygon), self.epoch);
+        let plane = &mut self.planes[k];
+        plane.current_epoch = epoch;
+        if !plane.broken {
+            glue_made(&mut plane.current, n, &r.origins);
+        }
         self.pending.push_back(PendingCut {
             polygon: polygon.clone(),
             frame: if self.deformed {
@@ -355,6 +400,8 @@ impl LiveMt {
             if spent {
                 break;
             }
+            // The polygon the MT was cut by when a fold made it fall back to one at rest.
+            let mut fallback: Option<CutPolygon> = None;
             let made = match &front.frame {
                 Frame::Rest => self.cutter.cut(&front.polygon),
                 frame => {
@@ -373,11 +420,18 @@ impl LiveMt {
                         }
                         _ => self.place_pool(d),
                     };
-                    let made = match self.cutter.cut_deformed(&front.polygon, &placed) {
+                    let glued = match self.plane_of(&front.polygon).map(|k| &self.planes[k]) {
+                        Some(p) if p.mt_epoch != front.epoch => &p.mt[..],
+                        _ => &[],
+                    };
+                    let made = match self.cutter.cut_deformed(&front.polygon, &placed, glued) {
                         Err(CutError::DeformationFolds { .. }) => {
                             report.folded += 1;
                             self.remesh_due = true;
-                            self.cutter.cut(&rest_polygon(&front.polygon, d)?)
+                            let at_rest = rest_polygon(&front.polygon, d)?;
+                            let made = self.cutter.cut(&at_rest);
+                            fallback = Some(at_rest);
+                            made
                         }
                         r => r,
                     };
@@ -397,7 +451,20 @@ impl LiveMt {
                 r => r?,
             };
             let changed = front.changed;
-            self.pending.pop_front();
+            let front = self.pending.pop_front().expect("the front cut");
+            let first = self.first_cut_vertex + self.cut_origins.len();
+            let k = self.plane_index(&front.polygon);
+            let plane = &mut self.planes[k];
+            plane.mt_epoch = front.epoch;
+            if fallback.is_some() {
+                // The crack this cut left in the MT does not lie in its plane: the blade's
+                // next steps in it meet that crack as they would at rest, nothing glued.
+                plane.broken = true;
+                plane.mt = Vec::new();
+                plane.current = Vec::new();
+            } else if !plane.broken {
+                glue_made(&mut plane.mt, first, self.cutter.last_origins());
+            }
             self.cut_origins
                 .extend_from_slice(self.cutter.last_origins());
             self.cut_ends.push(self.cut_origins.len());
@@ -502,6 +569,33 @@ impl LiveMt {
         placed
     }
 
+    /// The plane `polygon` lies in, among those of earlier cuts (normals parallel and its
+    /// first point on the plane, to 1e-9 of its coordinates and size).
+    fn plane_of(&self, polygon: &CutPolygon) -> Option<usize> {
+        let (n, q) = (polygon.normal(), polygon.points()[0]);
+        let b = polygon.bbox();
+        let tolerance = 1e-9 * (q.abs().max_element() + (b.max - b.min).length());
+        self.planes.iter().position(|p| {
+            p.normal.cross(n).length() <= 1e-9 && p.normal.dot(q - p.point).abs() <= tolerance
+        })
+    }
+
+    /// [`plane_of`](Self::plane_of), the plane added when new.
+    fn plane_index(&mut self, polygon: &CutPolygon) -> usize {
+        self.plane_of(polygon).unwrap_or_else(|| {
+            self.planes.push(CutPlane {
+                normal: polygon.normal(),
+                point: polygon.points()[0],
+                broken: false,
+                mt: Vec::new(),
+                mt_epoch: u64::MAX,
+                current: Vec::new(),
+                current_epoch: u64::MAX,
+            });
+            self.planes.len() - 1
+        })
+    }
+
     /// Places the pool's vertices after those of `placed` (all made by cuts of this model,
     /// `placed` ending where a cut's vertices begin) by the combinations they were made as,
     /// a cut's vertices together as [`origin_positions`] places them at rest (points at the
@@ -596,6 +690,19 @@ impl LiveMt {
         self.current = cutter;
         self.rest = rest;
         self.mt_vertex = e.vertex_ids;
+        // The current mesh's vertices are numbered anew: its glued ones are the MT's.
+        let mut current_of = vec![VertexId::INVALID; self.cutter.mt().nb_vertices()];
+        for (i, v) in self.mt_vertex.iter().enumerate() {
+            current_of[v.idx()] = VertexId::from_usize(i);
+        }
+        for p in &mut self.planes {
+            p.current.clear();
+            p.current.extend(
+                p.mt.iter()
+                    .map(|v| current_of[v.idx()])
+                    .filter(|v| v.is_valid()),
+            );
+        }
         self.keep_room();
         self.deformed = deformed;
         // Not deformed, the mesh holds the extraction's own positions.
@@ -604,6 +711,16 @@ impl LiveMt {
         self.epoch += 1;
         Ok(())
     }
+}
+
+/// Adds to `glued` the vertices a cut made (`origins`, numbered from `first`) and those it
+/// duplicated.
+fn glue_made(glued: &mut Vec<VertexId>, first: usize, origins: &[VertexOrigin]) {
+    glued.extend((0..origins.len()).map(|i| VertexId::from_usize(first + i)));
+    glued.extend(origins.iter().filter_map(|o| match o {
+        VertexOrigin::Copy { of } => Some(*of),
+        _ => None,
+    }));
 }
 
 /// The cutter of a current mesh extracted from `mt`'s MT (MT vertices `ids`): with the MT's

@@ -190,9 +190,10 @@
 //!   own points as on the earlier plane (more steps refused); a taken tip as a lip of the
 //!   side its tets keep (every 20-step tilt cut, but on fandisk the bodies' tets then held
 //!   each other's vertices on coarser levels, and the MT stayed one component). A cut of
-//!   a deformed body
-//!   (`cut_deformed`) keeps no record: a step continuing one of those at an angle is
-//!   refused as before (tests/mt_live.rs). Before, every such step was refused. Such a
+//!   a deformed body (`cut_deformed`) keeps no record: a step continuing one of those at
+//!   an angle is refused as before (one continuing it in its plane after the body moved
+//!   takes the earlier crack's vertices as lying in it: `glued`, see [`super::live`]).
+//!   Before, every such step was refused. Such a
 //!   cut is not left in the MT: before closing, every fragment the cut changed has its
 //!   floor and ceiling checked for the same boundary, none holding a face twice, and
 //!   every tet the cut made for a positive orientation (what `Mt::validate` checks, read
@@ -545,13 +546,28 @@ impl MtCutter {
     /// cut point is shared by every tet of every level through it), and where `positions`
     /// equal the rest positions the cut is exactly [`cut`](Self::cut). Refused
     /// ([`CutError::DeformationFolds`]) when `positions` invert a tet the cut would touch.
+    ///
+    /// The vertices `glued` count as lying in the polygon's plane wherever `positions` put
+    /// them (their state is that of their projection onto it): the vertices earlier cuts
+    /// made in that plane, which a motion of the body since has moved off it, for a blade
+    /// continuing its crack in steps ([`super::live`]; empty: none). A vertex id out of
+    /// the pool is refused ([`CutError::InvalidOption`]).
     pub fn cut_deformed(
         &mut self,
         polygon: &CutPolygon,
         positions: &[DVec3],
+        glued: &[VertexId],
     ) -> Result<MtCutStats, CutError> {
-        super::cutter::check_positions(positions, self.mt().nb_vertices())?;
-        self.cut_with(polygon, None, Some(positions))
+        let nv = self.mt().nb_vertices();
+        super::cutter::check_positions(positions, nv)?;
+        if let Some(v) = glued.iter().find(|v| v.idx() >= nv) {
+            return Err(CutError::InvalidOption {
+                option: "glued",
+                value: v.idx() as f64,
+                expected: "vertex ids of the MT",
+            });
+        }
+        self.cut_with(polygon, None, Some((positions, glued)))
     }
 
     /// [`cut`](Self::cut), processing the involved fragments of step 3 in the order of
@@ -570,7 +586,7 @@ impl MtCutter {
         &mut self,
         polygon: &CutPolygon,
         key: Option<&dyn Fn(FragmentId) -> u64>,
-        deformed: Option<&[DVec3]>,
+        deformed: Option<(&[DVec3], &[VertexId])>,
     ) -> Result<MtCutStats, CutError> {
         // The vertex scales and the record of the last cuts travel with the MT (saved with
         // it, read by any cutter made of it): taken out while the MT is open, given back
@@ -597,7 +613,7 @@ impl MtCutter {
         &mut self,
         polygon: &CutPolygon,
         key: Option<&dyn Fn(FragmentId) -> u64>,
-        deformed: Option<&[DVec3]>,
+        deformed: Option<(&[DVec3], &[VertexId])>,
         made: &mut Made,
     ) -> Result<MtCutStats, CutError> {
         let start = Instant::now();
@@ -611,7 +627,10 @@ impl MtCutter {
         // Where the cut's decisions are made: rest positions, or the deformed ones (whose
         // bounds are not the fragments' boxes: those are not used then). Deformed positions
         // equal to the rest ones (a body at rest) are the cut at rest, boxes included.
-        let deformed = deformed.filter(|p| *p != mt.positions());
+        let (deformed, glued) = match deformed {
+            Some((p, glued)) if p != mt.positions() => (Some(p), glued),
+            _ => (None, &[][..]),
+        };
         let positions = deformed.unwrap_or(mt.positions());
         let bounds = match deformed {
             Some(p) => Aabb::from_points(p),
@@ -635,9 +654,20 @@ impl MtCutter {
         if !turning.is_empty() {
             classifier = classifier.with_crack_tips(&turning_tips, tip_reach(&opts));
         }
+        let mut glue_flags: Vec<bool> = Vec::new();
+        let mut glue_reach = 0.0f64;
+        if !glued.is_empty() {
+            glue_flags.resize(nv, false);
+            for &v in glued {
+                glue_flags[v.idx()] = true;
+                glue_reach = glue_reach.max(polygon.signed_distance(positions[v.idx()]).abs());
+            }
+            classifier = classifier.with_glued(&glue_flags, glue_reach);
+        }
         let coord = bounds.min.abs().max(self.bounds.max.abs()).max_element();
         let slack = 64.0 * f64::EPSILON * (coord + polygon.bbox().max.abs().max_element());
-        let margin = (2.0 * opts.snap.relative + contour_band(&opts)) * self.max_scale + slack;
+        let margin =
+            (2.0 * opts.snap.relative + contour_band(&opts)) * self.max_scale + slack + glue_reach;
         let cbox = polygon.bbox();
         let grown = Aabb {
             min: cbox.min - DVec3::splat(margin),
