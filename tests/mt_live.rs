@@ -468,6 +468,43 @@ fn a_cut_the_mt_refuses_is_dropped_and_the_current_mesh_extracted_again() {
 }
 
 #[test]
+fn a_fold_fallback_leaving_a_whole_mesh_invalid_is_refused() {
+    // The liver bent more by 5 % of the bend at every step of a blade crossing it in 16:
+    // two steps fold tets of other levels and fall back to a cut at rest; the second
+    // fallback's polygon, close to the plane of the earlier steps without lying in it,
+    // would leave the coarsest mesh with a vertex joining two boundary fans (the MT cut's
+    // own checks of the fragments it changed did not see it). It is refused and given
+    // back: the MT and the current mesh stay valid, the current mesh mapped back.
+    let mt = mt_common::built("liver").1.clone();
+    let r = middle(&mt);
+    let mut l = LiveMt::new(mt, &r, mtcut::cut::Scalpel::OPTIONS).expect("live");
+    let d = diag(l.mesh());
+    let mut refused = 0;
+    for (k, p) in sweep(l.mt(), 16).iter().enumerate().take(10) {
+        let case = format!("liver step {k}");
+        let rest = l.rest_positions().to_vec();
+        l.set_positions(&bend(&rest, 0.005 * (1.0 + 0.05 * k as f64), d))
+            .unwrap_or_else(|e| panic!("{case}: {e}"));
+        l.cut(p).unwrap_or_else(|e| panic!("{case}: {e}"));
+        let before = l.mt().to_bytes();
+        let r = l
+            .process_pending(PendingBudget::All)
+            .unwrap_or_else(|e| panic!("{case}: {e}"));
+        if r.folded > 0 && !r.refused.is_empty() {
+            let message = r.refused[0].to_string();
+            if message.contains("fold fell back") {
+                refused += 1;
+                assert!(r.remeshed && r.cuts.is_empty(), "{case}: {r:?}");
+                assert!(l.mt().to_bytes() == before, "{case}: the MT changed");
+            }
+        }
+        check(&l, &case);
+    }
+    // When the fallback learns to keep whole meshes valid, this test needs another case.
+    assert_eq!(refused, 1, "no fallback refused");
+}
+
+#[test]
 fn a_deformation_folding_tets_of_other_levels_falls_back_to_a_rest_cut() {
     // A 1% bend of the liver folds MT tets the blade's first sweep meets (measured: two);
     // that cut is made at rest with the polygon mapped by the best-fitting affine map, and

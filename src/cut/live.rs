@@ -46,7 +46,12 @@
 //!   cut meets: such a cut cannot be made in the deformed space. It is made at rest with
 //!   the polygon mapped by the affine map that best fits the deformation around it
 //!   ([`PendingReport::folded`]); the frontier's cut then does not map back, and the
-//!   current mesh is replaced by the extraction.
+//!   current mesh is replaced by the extraction. That polygon lies close to the plane of
+//!   the blade's earlier steps without lying in it, where the MT cut's checks of the
+//!   fragments it changed can miss a whole mesh left pinched (measured once, on the
+//!   liver's coarsest mesh): the finest, the coarsest and the live resolution's meshes are
+//!   extracted and checked after it, and a cut leaving one invalid is given back (the MT
+//!   as it was, from a copy taken before) and refused like the others.
 //! * A body moving *between* the steps of one incision: the vertices the last steps made
 //!   (their crack's lips and tips, on every level) were made in the blade's plane, but the
 //!   motion has moved them off it by more than any snapping distance, so the next step
@@ -429,7 +434,7 @@ impl LiveMt {
                             report.folded += 1;
                             self.remesh_due = true;
                             let at_rest = rest_polygon(&front.polygon, d)?;
-                            let made = self.cutter.cut(&at_rest);
+                            let made = cut_checked(&mut self.cutter, &self.resolution, &at_rest);
                             fallback = Some(at_rest);
                             made
                         }
@@ -711,6 +716,49 @@ impl LiveMt {
         self.epoch += 1;
         Ok(())
     }
+}
+
+/// The MT cut at rest by `polygon` that a fold falls back to, given back (as a refused cut)
+/// when it leaves the finest, the coarsest or the live `resolution`'s mesh invalid. Such a
+/// polygon, mapped from the deformed space, lies close to the plane of the blade's earlier
+/// steps without lying in it, where the MT cut's own checks (of the fragments it changed)
+/// miss what it can do to a whole mesh: measured, a bend growing by 5 % per step left the
+/// liver's coarsest mesh with a vertex joining two boundary fans. The check extracts those
+/// meshes; a fold is rare.
+fn cut_checked(
+    cutter: &mut MtCutter,
+    resolution: &ExtractOptions,
+    polygon: &CutPolygon,
+) -> Result<MtCutStats, CutError> {
+    let before = cutter.mt().clone();
+    let stats = cutter.cut(polygon)?;
+    let mt = cutter.mt();
+    let first = |f: &[crate::mesh::FragmentId]| f.first().map_or(0, |f| f.idx());
+    for (name, options, fragment) in [
+        ("finest", ExtractOptions::FINEST, first(mt.roots())),
+        ("coarsest", ExtractOptions::COARSEST, first(mt.drains())),
+        ("current", *resolution, first(mt.roots())),
+    ] {
+        let problem = match cutter.mt().extract(&options) {
+            Ok(e) => {
+                let v = e.mesh.validate();
+                (!v.is_valid()).then(|| v.to_string())
+            }
+            Err(e) => Some(e.to_string()),
+        };
+        if let Some(problem) = problem {
+            let options = *cutter.options();
+            *cutter = MtCutter::new(before, options)?;
+            return Err(CutError::MtInconsistent {
+                fragment,
+                detail: format!(
+                    "the cut at rest a fold fell back to would leave the {name} mesh invalid \
+                     ({problem}): refused, the MT as it was"
+                ),
+            });
+        }
+    }
+    Ok(stats)
 }
 
 /// Adds to `glued` the vertices a cut made (`origins`, numbered from `first`) and those it
