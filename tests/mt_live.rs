@@ -30,6 +30,14 @@ fn live(name: &str) -> LiveMt {
     LiveMt::new(mt, &r, MtCutter::DEFAULT_OPTIONS).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
+/// A live model of shared mesh `name` at the middle resolution, cut with a scalpel's
+/// options.
+fn scalpel_live(name: &str) -> LiveMt {
+    let mt = mt_common::built(name).1.clone();
+    let r = middle(&mt);
+    LiveMt::new(mt, &r, mtcut::cut::Scalpel::OPTIONS).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
 /// The tets of `mesh` as sorted rest positions (bit patterns): numbering-free.
 fn tet_keys(mesh: &TetMesh, rest: &[DVec3]) -> Vec<[[u64; 3]; 4]> {
     let mut keys: Vec<[[u64; 3]; 4]> = mesh
@@ -322,9 +330,7 @@ fn a_blade_swept_through_the_live_model_cuts_frontier_first_at_every_step() {
     // plane z = middle in 8 steps; each step cuts the current mesh at once and the MT
     // after; the body separates at the end.
     for name in mt_common::MESHES {
-        let mt = mt_common::built(name).1.clone();
-        let r = middle(&mt);
-        let mut l = LiveMt::new(mt, &r, mtcut::cut::Scalpel::OPTIONS).expect("live");
+        let mut l = scalpel_live(name);
         let mut remeshed = 0;
         for (k, p) in sweep(l.mt(), 8).iter().enumerate() {
             let case = format!("{name} step {k}");
@@ -349,9 +355,7 @@ fn a_blade_swept_through_the_live_model_cuts_frontier_first_at_every_step() {
 /// diagonal before each step (`None`: left as it is); every step maps back exactly and
 /// leaves the MT and the current mesh valid. Returns the live model.
 fn bent_sweep(name: &str, steps: usize, amount: impl Fn(usize) -> Option<f64>) -> LiveMt {
-    let mt = mt_common::built(name).1.clone();
-    let r = middle(&mt);
-    let mut l = LiveMt::new(mt, &r, mtcut::cut::Scalpel::OPTIONS).expect("live");
+    let mut l = scalpel_live(name);
     let d = diag(l.mesh());
     for (k, p) in sweep(l.mt(), steps).iter().enumerate() {
         let case = format!("{name} step {k}");
@@ -424,10 +428,8 @@ fn a_cut_the_mt_refuses_is_dropped_and_the_current_mesh_extracted_again() {
     // dropped from the queue and reported, the MT is byte for byte as before it, and the
     // current mesh, which had it, is replaced by the MT's extraction: both valid, the
     // current mesh mapped back; the next steps go on.
-    let mt = mt_common::built("fandisk").1.clone();
-    let r = middle(&mt);
-    let b = mtcut::geom::Aabb::from_points(mt.positions());
-    let mut l = LiveMt::new(mt, &r, mtcut::cut::Scalpel::OPTIONS).expect("live");
+    let mut l = scalpel_live("fandisk");
+    let b = mtcut::geom::Aabb::from_points(l.mt().positions());
     let path: Vec<_> = (0..=20).map(|k| blades::tilting_in(&b, k, 20)).collect();
     // Each polygon of a sweep queued and processed alone, so that a refused one is the
     // whole of its queue; on until two more polygons after the first refused one.
@@ -475,9 +477,7 @@ fn a_fold_fallback_leaving_a_whole_mesh_invalid_is_refused() {
     // would leave the coarsest mesh with a vertex joining two boundary fans (the MT cut's
     // own checks of the fragments it changed did not see it). It is refused and given
     // back: the MT and the current mesh stay valid, the current mesh mapped back.
-    let mt = mt_common::built("liver").1.clone();
-    let r = middle(&mt);
-    let mut l = LiveMt::new(mt, &r, mtcut::cut::Scalpel::OPTIONS).expect("live");
+    let mut l = scalpel_live("liver");
     let d = diag(l.mesh());
     let mut refused = 0;
     for (k, p) in sweep(l.mt(), 16).iter().enumerate().take(10) {
@@ -509,9 +509,7 @@ fn a_deformation_folding_tets_of_other_levels_falls_back_to_a_rest_cut() {
     // A 1% bend of the liver folds MT tets the blade's first sweep meets (measured: two);
     // that cut is made at rest with the polygon mapped by the best-fitting affine map, and
     // the current mesh is replaced by the MT's extraction. Everything stays valid.
-    let mt = mt_common::built("liver").1.clone();
-    let r = middle(&mt);
-    let mut l = LiveMt::new(mt, &r, mtcut::cut::Scalpel::OPTIONS).expect("live");
+    let mut l = scalpel_live("liver");
     let d = diag(l.mesh());
     let rest = l.rest_positions().to_vec();
     l.set_positions(&bend(&rest, 0.01, d)).expect("bend");
