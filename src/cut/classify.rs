@@ -23,6 +23,26 @@ use crate::mesh::{Tet, VertexId};
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU32, Ordering};
 
+/// Fills `flags` (one per vertex, `nb_vertices` long) with the vertices `glued` and returns
+/// the farthest of them from `polygon`'s plane, at `position`: the two arguments of
+/// [`StateClassifier::with_glued`], as the frontier-first cut and the MT cut both build them.
+pub(crate) fn mark_glued(
+    flags: &mut Vec<bool>,
+    nb_vertices: usize,
+    glued: &[VertexId],
+    polygon: &CutPolygon,
+    position: impl Fn(VertexId) -> DVec3,
+) -> f64 {
+    flags.clear();
+    flags.resize(nb_vertices, false);
+    let mut reach = 0.0f64;
+    for &v in glued {
+        flags[v.idx()] = true;
+        reach = reach.max(polygon.signed_distance(position(v)).abs());
+    }
+    reach
+}
+
 /// "No record".
 pub(crate) const NONE: u32 = u32::MAX;
 

@@ -5,6 +5,7 @@ use super::bielser::Bielser17Nodes;
 use super::bvh::{Candidates, QueryBuffers, QueryOptions, TetBvh};
 use super::classify::{
     CrackTips, CutScratch, CutSession, NONE, OriginPositions, StateCache, TetClass, VertexOrigin,
+    mark_glued,
 };
 use super::components::Components;
 use super::options::{CutError, CutOptions, Scheme};
@@ -487,13 +488,10 @@ impl Cutter {
             return self.cut(polygon);
         }
         let mut flags = std::mem::take(&mut self.glued);
-        flags.clear();
-        flags.resize(self.mesh.nb_vertices(), false);
-        let mut reach = 0.0f64;
-        for &v in glued {
-            flags[v.idx()] = true;
-            reach = reach.max(polygon.signed_distance(self.mesh.position(v)).abs());
-        }
+        let mesh = &self.mesh;
+        let reach = mark_glued(&mut flags, mesh.nb_vertices(), glued, polygon, |v| {
+            mesh.position(v)
+        });
         self.glued = flags;
         self.glue_reach = Some(reach);
         let result = self.cut(polygon);
@@ -718,13 +716,10 @@ impl Cutter {
                 };
             }
             // Vertices to leave unsnapped: the pinched ones; once there are none, those
-            // enclosing vertices just off the cut (see `pockets`).
+            // enclosing vertices just off the cut (see `pockets`; the valences it reads are
+            // kept exactly when the options do not continue cracks).
             let mut unsnapping = std::mem::take(&mut copies.pinched);
-            if unsnapping.is_empty()
-                && opts.scheme == Scheme::Lut
-                && !opts.continue_cracks
-                && !self.valence.is_empty()
-            {
+            if unsnapping.is_empty() && opts.scheme == Scheme::Lut && !opts.continue_cracks {
                 unsnapping = pockets::enclosing_snapped(
                     positions,
                     &self.scales,

@@ -206,7 +206,7 @@
 
 use super::classify::is_candidate;
 use super::classify::{CrackTips, CutScratch, CutSession, NONE, StateClassifier, TetClass};
-use super::classify::{VertexOrigin, origin_positions};
+use super::classify::{VertexOrigin, mark_glued, origin_positions};
 use super::cutter::{push_origin_rows, unsnap, with_twins};
 use super::options::{CutError, CutOptions};
 use super::split::{Children, split_tet};
@@ -657,11 +657,7 @@ impl MtCutter {
         let mut glue_flags: Vec<bool> = Vec::new();
         let mut glue_reach = 0.0f64;
         if !glued.is_empty() {
-            glue_flags.resize(nv, false);
-            for &v in glued {
-                glue_flags[v.idx()] = true;
-                glue_reach = glue_reach.max(polygon.signed_distance(positions[v.idx()]).abs());
-            }
+            glue_reach = mark_glued(&mut glue_flags, nv, glued, polygon, |v| positions[v.idx()]);
             classifier = classifier.with_glued(&glue_flags, glue_reach);
         }
         let coord = bounds.min.abs().max(self.bounds.max.abs()).max_element();
