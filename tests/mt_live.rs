@@ -474,8 +474,9 @@ fn a_fold_fallback_leaving_a_whole_mesh_invalid_is_refused() {
     // The liver bent more by 5 % of the bend at every step of a blade crossing it in 16:
     // two steps fold tets of other levels and fall back to a cut at rest; the second
     // fallback's polygon, close to the plane of the earlier steps without lying in it,
-    // would leave the coarsest mesh with a vertex joining two boundary fans (the MT cut's
-    // own checks of the fragments it changed did not see it). It is refused and given
+    // would leave the live resolution's mesh with vertices joining two boundary fans (the
+    // MT cut analyses the finest and the coarsest mesh only; the coarsest was pinched too
+    // before it did). It is refused and given
     // back: the MT and the current mesh stay valid, the current mesh mapped back.
     let mut l = scalpel_live("liver");
     let d = diag(l.mesh());

@@ -49,7 +49,9 @@
 //!   current mesh is replaced by the extraction. That polygon lies close to the plane of
 //!   the blade's earlier steps without lying in it, where the MT cut's checks of the
 //!   fragments it changed can miss a whole mesh left pinched (measured once, on the
-//!   liver's coarsest mesh): the finest, the coarsest and the live resolution's meshes are
+//!   liver's live resolution; its coarsest mesh too, until the MT cut analysed the
+//!   coarsest mesh's snapped vertices as it does the finest's): the finest, the coarsest
+//!   and the live resolution's meshes are
 //!   extracted and checked after it, and a cut leaving one invalid is given back (the MT
 //!   as it was, from a copy taken before) and refused like the others.
 //! * A body moving *between* the steps of one incision: the vertices the last steps made

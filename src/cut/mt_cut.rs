@@ -126,9 +126,12 @@
 //!   of so small a `snap` is quality: cut points can lie arbitrarily close to an edge's ends, so
 //!   children can be thin (every orientation is still exact, and checked by
 //!   `Mt::validate`).
-//! * A vertex exactly on the cut whose tets in the finest mesh do not form one group per
-//!   side (the engine's *pinched* vertices and boundary saddles) is left unsnapped on every
-//!   level, as the engine does on a plain mesh; coarser levels are not analysed separately.
+//! * A vertex exactly on the cut whose tets in the finest or in the coarsest mesh do not
+//!   form one group per side (the engine's *pinched* vertices and boundary saddles) is left
+//!   unsnapped on every level, as the engine does on a plain mesh. The meshes between are
+//!   not analysed: one can be left pinched at such a vertex (measured on the liver's live
+//!   resolution, by a fold's fallback cut, [`super::live`]; before the coarsest mesh was
+//!   analysed too, that cut left it pinched as well).
 //! * Closing the MT after a cut (the pool merged back into arcs after a read-only check
 //!   of its order, levels and arc lists derived again, the vertex ids of every tet
 //!   checked) costs time in proportion to the pool and the DAG, not to the cut: the DAG
@@ -806,9 +809,10 @@ impl MtCutter {
         for k in 0..tets.len() {
             child_of[k] = split_into(&session, k, &classes[k], &mut children);
         }
-        // Snapped vertices whose tets in the finest mesh do not form one group per side
-        // (the engine's analysis, [`super::unglue`]) are left unsnapped on every level, and
-        // the tets around them classified and split again, as the plain-mesh engine does.
+        // Snapped vertices whose tets in the finest or the coarsest mesh do not form one
+        // group per side (the engine's analysis, [`super::unglue`], of each) are left
+        // unsnapped on every level, and the tets around them classified and split again,
+        // as the plain-mesh engine does.
         let finest: Vec<bool> = cand
             .iter()
             .map(|&t| mt.fragment_kind(mt.tet_creator(t)) == FragmentKind::Root)
@@ -818,53 +822,64 @@ impl MtCutter {
         // not the sides of this cut, so they are not unsnapped for having several groups
         // on a side.
         let turn = TurnTips::new(&tets, &states, &turning, made, 1e-6 * self.max_scale);
+        let coarsest: Vec<bool> = cand
+            .iter()
+            .map(|&t| mt.fragment_kind(mt.tet_destroyer(t)) == FragmentKind::Drain)
+            .collect();
+        let mut star: Vec<StarEntry> = Vec::new();
+        let mut on_cut: Vec<VertexId> = Vec::new();
         loop {
-            let mut star: Vec<StarEntry> = Vec::new();
-            let mut on_cut: Vec<VertexId> = Vec::new();
-            for (k, class) in classes.iter().enumerate() {
-                if !finest[k] || !class.touches_cut() {
-                    continue;
-                }
-                for (&s, &v) in class.states.iter().zip(&tets[k]) {
-                    if s == ON {
-                        on_cut.push(v);
+            let mut bad: Vec<VertexId> = Vec::new();
+            let mut snapped: Vec<VertexId> = Vec::new();
+            for level in [&finest, &coarsest] {
+                star.clear();
+                on_cut.clear();
+                for (k, class) in classes.iter().enumerate() {
+                    if !level[k] || !class.touches_cut() {
+                        continue;
                     }
-                }
-                match child_of[k] {
-                    NONE => {
-                        let side = side_of_states(&tets[k], class.states, positions, polygon);
-                        for j in (0..4).filter(|&j| class.states[j] == ON) {
-                            star.push(StarEntry {
-                                vertex: tets[k][j],
-                                tet: TetId((32 * k) as u32),
-                                verts: tets[k],
-                                side,
-                            });
+                    for (&s, &v) in class.states.iter().zip(&tets[k]) {
+                        if s == ON {
+                            on_cut.push(v);
                         }
                     }
-                    i => {
-                        let ch = &children[i as usize];
-                        for c in 0..ch.len {
-                            for j in (0..4).filter(|&j| ch.on_cut[c] & (1 << j) != 0) {
+                    match child_of[k] {
+                        NONE => {
+                            let side = side_of_states(&tets[k], class.states, positions, polygon);
+                            for j in (0..4).filter(|&j| class.states[j] == ON) {
                                 star.push(StarEntry {
-                                    vertex: ch.tets[c][j],
-                                    tet: TetId((32 * k + c) as u32),
-                                    verts: ch.tets[c],
-                                    side: ch.sides[c],
+                                    vertex: tets[k][j],
+                                    tet: TetId((32 * k) as u32),
+                                    verts: tets[k],
+                                    side,
                                 });
+                            }
+                        }
+                        i => {
+                            let ch = &children[i as usize];
+                            for c in 0..ch.len {
+                                for j in (0..4).filter(|&j| ch.on_cut[c] & (1 << j) != 0) {
+                                    star.push(StarEntry {
+                                        vertex: ch.tets[c][j],
+                                        tet: TetId((32 * k + c) as u32),
+                                        verts: ch.tets[c],
+                                        side: ch.sides[c],
+                                    });
+                                }
                             }
                         }
                     }
                 }
-            }
-            on_cut.sort_unstable();
-            on_cut.dedup();
-            let plan = plan_copies(&on_cut, &star, |v| on_cut.binary_search(&v).unwrap_or(0));
-            let mut bad = plan.pinched;
-            for w in plan.groups.windows(2) {
-                if w[0].0 == w[1].0 {
-                    bad.push(w[0].0);
+                on_cut.sort_unstable();
+                on_cut.dedup();
+                let plan = plan_copies(&on_cut, &star, |v| on_cut.binary_search(&v).unwrap_or(0));
+                bad.extend(plan.pinched);
+                for w in plan.groups.windows(2) {
+                    if w[0].0 == w[1].0 {
+                        bad.push(w[0].0);
+                    }
                 }
+                snapped.extend_from_slice(&on_cut);
             }
             bad.retain(|&v| !turn.has(v));
             bad.sort_unstable();
@@ -872,7 +887,9 @@ impl MtCutter {
             if bad.is_empty() {
                 break;
             }
-            let bad = with_twins(bad, &on_cut, positions);
+            snapped.sort_unstable();
+            snapped.dedup();
+            let bad = with_twins(bad, &snapped, positions);
             stats.vertices_unsnapped += bad.len();
             let affected = unsnap(&mut session, positions, polygon, &bad, &tets, &mut states);
             let sub_tets: Vec<Tet> = affected.iter().map(|&k| tets[k]).collect();
