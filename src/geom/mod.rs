@@ -14,7 +14,10 @@ mod predicates;
 mod tolerance;
 
 pub use plane::Plane;
-pub use polygon::{CutPolygon, PolygonError, SWEEP_PLANARITY, scalpel_sweep};
+pub(crate) use polygon::snap_to_plane;
+pub use polygon::{
+    CutPolygon, PLANE_SNAP, PLANE_SNAP_ANGLE, PolygonError, SWEEP_PLANARITY, scalpel_sweep,
+};
 pub use predicates::{
     Sign, orient2d, orient3d, signed_volume, signed_volume_inexact, triangle_area, triangle_normal,
 };

@@ -366,6 +366,62 @@ impl CutPolygon {
 /// one two triangles, so a blade moved by the same positions is cut alike by all of them.
 pub const SWEEP_PLANARITY: Tolerance = Tolerance { relative: 1e-9 };
 
+/// How far from an earlier cut's plane, relative to the model's bounding-box diagonal, a
+/// polygon cutting a multiresolution model is still cut in that plane (the MT cut's and
+/// the live model's limits, `mtcut::cut::mt_cut` and `mtcut::cut::live`).
+pub const PLANE_SNAP: f64 = 1e-5;
+
+/// The largest angle (radians) between such a polygon and the earlier cut's plane
+/// ([`PLANE_SNAP`]).
+pub const PLANE_SNAP_ANGLE: f64 = 1e-3;
+
+/// `polygon` moved onto the nearest of `planes` (each a unit normal and a point: earlier
+/// cuts' planes) it lies close to without lying in it: its normal within
+/// [`PLANE_SNAP_ANGLE`] of the plane's (either orientation), every corner within
+/// `distance` of it, some corner farther than rounding (1e-9 of the corners' coordinates
+/// and of the polygon's size, the tolerance by which steps of a blade continuing in one
+/// plane are told apart). The corners are projected in their order, so the polygon keeps
+/// its orientation. `None` when no plane is close, when the polygon already lies in one of
+/// them, or when its projection is not a valid polygon.
+///
+/// Why: a cut overlapping an earlier crack nearly in its plane (offset by 1e-7 of the
+/// model's size, or tilted by 1e-6) meets that crack's lips and tips on either side of its
+/// plane by amounts below any snapping distance, and different levels of a
+/// multiresolution model then disagree on where it passes (measured: 52 of 180 such cuts
+/// refused on the three shared meshes); in the crack's plane, none is.
+pub(crate) fn snap_to_plane(
+    polygon: &CutPolygon,
+    planes: impl Iterator<Item = (DVec3, DVec3)>,
+    distance: f64,
+) -> Option<CutPolygon> {
+    let b = polygon.bbox();
+    let rounding = 1e-9 * (b.min.abs().max(b.max.abs()).max_element() + polygon.diameter());
+    let mut nearest: Option<(f64, DVec3, DVec3)> = None;
+    for (normal, point) in planes {
+        if polygon.normal().cross(normal).length() > PLANE_SNAP_ANGLE.sin() {
+            continue;
+        }
+        let far = polygon
+            .points()
+            .iter()
+            .map(|p| normal.dot(*p - point).abs())
+            .fold(0.0, f64::max);
+        if far <= rounding {
+            return None;
+        }
+        if far <= distance && nearest.is_none_or(|(f, _, _)| far < f) {
+            nearest = Some((far, normal, point));
+        }
+    }
+    let (_, normal, point) = nearest?;
+    let projected: Vec<DVec3> = polygon
+        .points()
+        .iter()
+        .map(|p| *p - normal * normal.dot(*p - point))
+        .collect();
+    CutPolygon::new(&projected).ok()
+}
+
 /// The polygons swept by a straight blade moving during one time step: the segment
 /// `start[0]`–`start[1]` at t0 and `end[0]`–`end[1]` at t1 (corresponding ends). One
 /// quadrilateral when it is planar (within `planarity` of its size) and convex; otherwise
