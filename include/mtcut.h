@@ -319,6 +319,15 @@ typedef struct mtcut_cut_stats {
    * Counting the components.
    */
   double seconds_components;
+  /**
+   * Second version. Polygons of the call that lay close to the plane of an earlier cut
+   * of the model (every corner within 1e-5 of its bounding-box diagonal, the normal
+   * within 1e-3 rad) without lying in it, and were cut in that plane, their corners
+   * projected onto it (`mtcut_mt_cut`, `mtcut_live_cut`; a blade re-entering an
+   * incision); 0 for plain meshes. A caller whose `struct_size` ends before it (the
+   * first version) does not get it.
+   */
+  size_t polygons_moved_to_plane;
 } mtcut_cut_stats;
 
 /**
@@ -1196,7 +1205,9 @@ mtcut_status mtcut_mt_build(const struct mtcut_mesh *mesh,
  * leaves in different bodies are split, and a body cut straight through becomes
  * independent models in the same handle (`mtcut_mt_statistics` counts them as
  * components). Polygon rules as in `mtcut_mesh_cut`. `stats_or_null`, if given, receives the counts over all levels
- * (`tets_after`/`vertices_after`: the model's tets and vertices over all levels).
+ * (`tets_after`/`vertices_after`: the model's tets and vertices over all levels). A
+ * polygon close to the plane of one of the model's last cuts without lying in it is cut
+ * in that plane (`polygons_moved_to_plane`).
  *
  * The model keeps the record of its last cuts (saved with it by `mtcut_mt_save`): a call
  * whose polygon begins where the last one's crack ended, at an angle (a turning or
@@ -1538,8 +1549,10 @@ mtcut_status mtcut_live_set_positions(struct mtcut_live *live,
  * The frontier-first cut: cuts the current mesh, at its current positions, with the
  * planar convex polygon of `n_points` corners at `polygon_xyz` (given where the body
  * lies now), and queues the cut of the model. `stats_or_null` receives the current
- * mesh's cut (`seconds_cut`: the whole call). A polygon that is not planar and convex
- * gives `MTCUT_STATUS_INVALID_ARGUMENT`, nothing changed.
+ * mesh's cut (`seconds_cut`: the whole call; `polygons_moved_to_plane`: 1 when the
+ * polygon lay close to the plane of an earlier cut of this model without lying in it,
+ * and was cut in that plane, here and on the model). A polygon that is not planar and
+ * convex gives `MTCUT_STATUS_INVALID_ARGUMENT`, nothing changed.
  *
  * # Safety
  * `live` must be a live handle used by no other thread; `polygon_xyz` readable for

@@ -138,6 +138,21 @@ fn a_bent_body_is_cut_frontier_first_then_the_model_catches_up() {
         assert_eq!(st.components, 2, "the cut went through");
         mtcut_mt_free(mt);
     }
+    // A square 1e-7 off that plane (a blade re-entering the cut) is made in it, here and
+    // on the model: reported, nothing remeshed.
+    let mut again = square;
+    for k in 0..4 {
+        again[3 * k + 2] += 1e-7;
+    }
+    let mut cs = mtcut_cut_stats {
+        struct_size: size_of::<mtcut_cut_stats>(),
+        ..Default::default()
+    };
+    ok(unsafe { mtcut_live_cut(l.0, again.as_ptr(), 4, &mut cs) });
+    assert_eq!(cs.polygons_moved_to_plane, 1, "{cs:?}");
+    ok(unsafe { mtcut_live_process_pending(l.0, 1, 0.0, &mut r) });
+    assert_eq!((r.cuts_done, r.cuts_left, r.remeshed), (1, 0, 0), "{r:?}");
+    assert!(valid_mesh(&l));
     // Nothing pending: a new resolution is taken.
     ok(unsafe { mtcut_live_set_resolution(l.0, ptr::null()) });
     assert!(valid_mesh(&l));

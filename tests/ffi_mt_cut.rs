@@ -228,12 +228,23 @@ fn options_choose_the_scheme_and_the_snapping() {
 
 #[test]
 fn an_older_stats_struct_gets_only_its_fields() {
-    // A program compiled when mtcut_cut_stats ended before `seconds_components` would pass
-    // that size; this library refuses sizes below the first version, which is the whole
-    // struct here, so only the exact size and the refusals are testable.
+    // A program compiled against the first version of mtcut_cut_stats (ending with
+    // `seconds_components`) passes that size: it gets those fields, nothing past them.
+    let first_version = std::mem::offset_of!(mtcut_cut_stats, polygons_moved_to_plane);
     let m = cube();
     let mut s = cut_stats();
-    s.struct_size = size_of::<mtcut_cut_stats>() - 8;
+    s.struct_size = first_version;
+    s.polygons_moved_to_plane = 77;
+    ok(unsafe { mtcut_mesh_cut(m.0, ACROSS.as_ptr(), 3, &mut s) });
+    assert!(s.tets_cut > 0 && s.tets_after > 6, "{s:?}");
+    assert_eq!(
+        s.polygons_moved_to_plane, 77,
+        "written past the caller's struct_size"
+    );
+    // Sizes below the first version are refused, the mesh left alone.
+    let m = cube();
+    let mut s = cut_stats();
+    s.struct_size = first_version - 8;
     let st = unsafe { mtcut_mesh_cut(m.0, ACROSS.as_ptr(), 3, &mut s) };
     refused(
         st,
@@ -1383,4 +1394,58 @@ fn a_sweep_gives_the_polygons_the_scalpel_cuts() {
         n == 0 && counts == [0, 0] && xyz == [0.0; 18],
         "a refused call wrote"
     );
+}
+
+/// A second cut overlapping a partial first one nearly in its plane (offset by 1e-9 of the
+/// diagonal, tilted by about 4e-6) is made in that plane and reported in
+/// `polygons_moved_to_plane`; a caller with the first version of `mtcut_cut_stats` (its
+/// `struct_size` ending before that field) gets the rest and not that field.
+#[test]
+fn a_cut_close_to_an_earlier_cuts_plane_is_moved_into_it_and_reported() {
+    let input = read("fandisk.node");
+    let (xyz, _) = arrays(&input);
+    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+    for p in xyz.chunks_exact(3) {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let size = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    let diag = size.iter().map(|s| s * s).sum::<f64>().sqrt();
+    let (xc, zc) = (0.5 * (lo[0] + hi[0]), lo[2] + 0.5123 * size[2]);
+    // A band across y, from x0 to x1, at height z0 at x0 and z1 at x1.
+    let band = |x0: f64, x1: f64, z0: f64, z1: f64| {
+        let (y0, y1) = (lo[1] - size[1], hi[1] + size[1]);
+        vec![x0, y0, z0, x1, y0, z1, x1, y1, z1, x0, y1, z0]
+    };
+    let mt = build(&input, None);
+    let (status, first) = mt_cut(&mt, &band(lo[0] - size[0], xc, zc, zc));
+    assert_eq!(status, MTCUT_STATUS_OK, "first cut: {}", last_error());
+    assert!(first.tets_cut > 0 && first.polygons_moved_to_plane == 0);
+    let (x0, x1) = (xc - 0.05 * size[0], xc + 0.2 * size[0]);
+    let z0 = zc + 1e-9 * diag;
+    let (status, second) = mt_cut(&mt, &band(x0, x1, z0, z0 + 1e-6 * diag));
+    assert_eq!(status, MTCUT_STATUS_OK, "second cut: {}", last_error());
+    assert!(second.tets_cut > 0 && second.polygons_moved_to_plane == 1);
+    // The first version of the struct: the new field is left as the caller set it.
+    let mut old = cut_stats();
+    old.struct_size = std::mem::offset_of!(mtcut_cut_stats, polygons_moved_to_plane);
+    old.polygons_moved_to_plane = 77;
+    let third = band(
+        xc + 0.15 * size[0],
+        xc + 0.3 * size[0],
+        zc - 1e-8 * diag,
+        zc - 1e-8 * diag,
+    );
+    let status = unsafe { mtcut_mt_cut(mt.0, third.as_ptr(), 4, &mut old) };
+    assert_eq!(status, MTCUT_STATUS_OK, "third cut: {}", last_error());
+    assert!(old.tets_cut > 0, "the older struct got the counts");
+    assert_eq!(
+        old.polygons_moved_to_plane, 77,
+        "written past the caller's struct_size"
+    );
+    let mut valid = false;
+    ok(unsafe { mtcut_mt_validate(mt.0, &mut valid, ptr::null_mut(), 0, ptr::null_mut()) });
+    assert!(valid, "the model is not valid");
 }

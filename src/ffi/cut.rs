@@ -180,6 +180,13 @@ pub struct mtcut_cut_stats {
     pub seconds_cut: f64,
     /// Counting the components.
     pub seconds_components: f64,
+    /// Second version. Polygons of the call that lay close to the plane of an earlier cut
+    /// of the model (every corner within 1e-5 of its bounding-box diagonal, the normal
+    /// within 1e-3 rad) without lying in it, and were cut in that plane, their corners
+    /// projected onto it (`mtcut_mt_cut`, `mtcut_live_cut`; a blade re-entering an
+    /// incision); 0 for plain meshes. A caller whose `struct_size` ends before it (the
+    /// first version) does not get it.
+    pub polygons_moved_to_plane: usize,
 }
 
 // SAFETY: repr(C), `struct_size: usize` first; FIRST_SIZE is within the struct.

@@ -251,8 +251,10 @@ pub unsafe extern "C" fn mtcut_live_set_positions(
 /// The frontier-first cut: cuts the current mesh, at its current positions, with the
 /// planar convex polygon of `n_points` corners at `polygon_xyz` (given where the body
 /// lies now), and queues the cut of the model. `stats_or_null` receives the current
-/// mesh's cut (`seconds_cut`: the whole call). A polygon that is not planar and convex
-/// gives `MTCUT_STATUS_INVALID_ARGUMENT`, nothing changed.
+/// mesh's cut (`seconds_cut`: the whole call; `polygons_moved_to_plane`: 1 when the
+/// polygon lay close to the plane of an earlier cut of this model without lying in it,
+/// and was cut in that plane, here and on the model). A polygon that is not planar and
+/// convex gives `MTCUT_STATUS_INVALID_ARGUMENT`, nothing changed.
 ///
 /// # Safety
 /// `live` must be a live handle used by no other thread; `polygon_xyz` readable for
@@ -280,6 +282,7 @@ pub unsafe extern "C" fn mtcut_live_cut(
             let mut c = mtcut_cut_stats::default();
             c.add(&cut.stats, 0.0);
             c.seconds_cut = cut.seconds;
+            c.polygons_moved_to_plane = usize::from(cut.moved_to_plane);
             out.write(c);
         }
         Ok(())
