@@ -513,3 +513,43 @@ fn a_polygon_missing_the_model_changes_nothing_and_warns() {
         assert_eq!(after[key], before[key], "{key}");
     }
 }
+
+#[test]
+fn a_polygon_close_to_an_earlier_cuts_plane_is_cut_in_it_and_said_so() {
+    // A half-plane through the liver, then a square overlapping it 1e-7 of the diagonal
+    // above its plane (a blade re-entering the cut).
+    let dir = scratch("cli_mt_cut near plane");
+    let b = liver().bbox();
+    let (c, r) = (b.center(), b.diagonal());
+    let first = square(
+        c - DVec3::X * (0.25 * r),
+        DVec3::X * (0.25 * r),
+        DVec3::Y * r,
+    );
+    let lifted = c + DVec3::X * (0.125 * r) + DVec3::Z * (1e-7 * r);
+    let second = square(lifted, DVec3::X * (0.25 * r), DVec3::Y * r);
+    let args = |out: &PathBuf| {
+        let polygons = ["--polygon", &first, "--polygon", &second];
+        let mut a = vec!["cut".to_string(), s(liver_model()).to_string()];
+        a.extend(polygons.iter().map(|p| p.to_string()));
+        a.extend(["-o".to_string(), s(out).to_string()]);
+        a
+    };
+    let out = dir.join("text.mt");
+    let a = args(&out);
+    let o = mtcut(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("polygon 1 lay close to an earlier cut's plane"),
+        "{err}"
+    );
+    assert!(!err.contains("polygon 0 lay"), "{err}");
+    let mut a = args(&dir.join("json.mt"));
+    a.push("--json".to_string());
+    let j = json(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(j["cuts"][0]["moved_to_plane"], false, "{j}");
+    assert_eq!(j["cuts"][1]["moved_to_plane"], true, "{j}");
+    let info = json(&["info", s(&out), "--json"]);
+    assert_eq!(info["valid"], true, "{info}");
+}

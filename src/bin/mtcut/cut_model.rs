@@ -92,6 +92,13 @@ pub fn run(args: Args) -> CliResult {
         if s.tets_cut == 0 && !args.json {
             eprintln!("mtcut: warning: polygon {i} does not cut the model");
         }
+        if s.moved_to_plane && !args.json {
+            eprintln!(
+                "mtcut: note: polygon {i} lay close to an earlier cut's plane (within {:e} of \
+                 the model's diagonal): it was cut in that plane",
+                mtcut::geom::PLANE_SNAP
+            );
+        }
         stats.push(s);
     }
     let mt = cutter.into_mt();
