@@ -532,27 +532,16 @@ fn a_cut_close_to_an_earlier_cuts_plane_is_made_in_it_here_and_on_the_mt() {
                 let rest = l.rest_positions().to_vec();
                 l.set_positions(&bend(&rest, 0.005, d)).expect("bend");
             }
-            let b = l.mesh().bbox();
-            let n = DVec3::new(0.3, 0.5, 0.8).normalize();
-            let u = n.any_orthonormal_vector();
-            let o = b.center() + n * (0.0123 * d);
-            let band = |o: DVec3, n2: DVec3, a0: f64, a1: f64| {
-                let u2 = (u - n2 * n2.dot(u)).normalize();
-                let w2 = n2.cross(u2);
-                let corners = [(a0, -1.0), (a1, -1.0), (a1, 1.0), (a0, 1.0)];
-                CutPolygon::new(&corners.map(|(a, s)| o + u2 * a + w2 * (s * d))).expect("band")
-            };
-            let first = l.cut(&band(o, n, -d, 0.0)).expect("first cut");
+            let c = l.mesh().bbox().center();
+            let [first, second] = mtcut_common::nearly_coplanar_bands(c, d, 1e-9, 1e-6);
+            let first = l.cut(&first).expect("first cut");
             assert!(!first.moved_to_plane && first.stats.tets_cut > 0, "{case}");
             let r = l
                 .process_pending(PendingBudget::All)
                 .expect("first pending");
             assert!(r.refused.is_empty() && !r.remeshed, "{case}: first: {r:?}");
             check(&l, &format!("{case}, first"));
-            let tilted = (n + u * 1e-6).normalize();
-            let second = l
-                .cut(&band(o + n * (1e-9 * d), tilted, -0.05 * d, 0.2 * d))
-                .expect("second cut");
+            let second = l.cut(&second).expect("second cut");
             assert!(second.moved_to_plane && second.stats.tets_cut > 0, "{case}");
             let r = l
                 .process_pending(PendingBudget::All)

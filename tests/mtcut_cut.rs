@@ -334,23 +334,12 @@ fn a_cut_close_to_an_earlier_cracks_plane_is_made_in_that_plane() {
         let mt = &mt_common::built(name).1;
         let volumes = extreme_volumes(mt);
         let b = Aabb::from_points(mt.positions());
-        let diag = b.diagonal();
-        let n = DVec3::new(0.3, 0.5, 0.8).normalize();
-        let u = n.any_orthonormal_vector();
-        let o = b.center() + n * (0.0123 * diag);
-        // A band of the plane through `o` with normal `n2`, from `a0` to `a1` along `u`.
-        let band = |o: DVec3, n2: DVec3, a0: f64, a1: f64| {
-            let u2 = (u - n2 * n2.dot(u)).normalize();
-            let w2 = n2.cross(u2);
-            let corners = [(a0, -1.0), (a1, -1.0), (a1, 1.0), (a0, 1.0)];
-            CutPolygon::new(&corners.map(|(a, s)| o + u2 * a + w2 * (s * diag))).expect("band")
-        };
         let mut rng = Rng(11);
         for (eps, tilt, moved) in [(1e-9, 1e-6, true), (1e-7, 0.0, true), (1e-3, 0.0, false)] {
             let case = format!("{name}, offset {eps:e}, tilt {tilt:e}");
             let mut c = cutter(name);
             let mut polygons = Vec::new();
-            let first = band(o, n, -diag, 0.0);
+            let [first, given] = nearly_coplanar_bands(b.center(), b.diagonal(), eps, tilt);
             cut_and_check(
                 &mut c,
                 volumes,
@@ -360,8 +349,6 @@ fn a_cut_close_to_an_earlier_cracks_plane_is_made_in_that_plane() {
                 &mut rng,
                 &case,
             );
-            let n2 = (n + u * tilt).normalize();
-            let given = band(o + n * (eps * diag), n2, -0.05 * diag, 0.2 * diag);
             let stats = c
                 .cut(&given)
                 .unwrap_or_else(|e| panic!("{case}: second cut refused: {e}"));

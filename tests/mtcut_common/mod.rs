@@ -199,3 +199,25 @@ pub fn check_after_cut(
     }
     Ok(())
 }
+
+/// Two overlapping bands across a body whose bounding box has centre `c` and diagonal
+/// `d`: the first in the plane with normal (0.3, 0.5, 0.8) through `c` moved by 0.0123 d
+/// along it, from -d to 0 along a direction `u` of that plane; the second from -0.05 d to
+/// 0.2 d along `u`, `offset` × d off that plane and tilted by `tilt` radians towards `u`.
+/// A second cut nearly in the first one's plane (a blade re-entering an incision).
+pub fn nearly_coplanar_bands(c: DVec3, d: f64, offset: f64, tilt: f64) -> [CutPolygon; 2] {
+    let n = DVec3::new(0.3, 0.5, 0.8).normalize();
+    let u = n.any_orthonormal_vector();
+    let o = c + n * (0.0123 * d);
+    let band = |o: DVec3, n2: DVec3, a0: f64, a1: f64| {
+        let u2 = (u - n2 * n2.dot(u)).normalize();
+        let w2 = n2.cross(u2);
+        let corners = [(a0, -1.0), (a1, -1.0), (a1, 1.0), (a0, 1.0)];
+        CutPolygon::new(&corners.map(|(a, s)| o + u2 * a + w2 * (s * d))).expect("band")
+    };
+    let tilted = (n + u * tilt).normalize();
+    [
+        band(o, n, -d, 0.0),
+        band(o + n * (offset * d), tilted, -0.05 * d, 0.2 * d),
+    ]
+}
