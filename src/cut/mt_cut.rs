@@ -129,9 +129,10 @@
 //! * A vertex exactly on the cut whose tets in the finest or in the coarsest mesh do not
 //!   form one group per side (the engine's *pinched* vertices and boundary saddles) is left
 //!   unsnapped on every level, as the engine does on a plain mesh. The meshes between are
-//!   not analysed: one can be left pinched at such a vertex (measured on the liver's live
-//!   resolution, by a fold's fallback cut, [`super::live`]; before the coarsest mesh was
-//!   analysed too, that cut left it pinched as well).
+//!   not analysed: one can be left pinched at such a vertex (measured once, on the liver's
+//!   live resolution, by a fold's fallback cut, [`super::live`], which also pinched the
+//!   coarsest mesh before it was analysed; that polygon, close to an earlier cut's plane,
+//!   is now cut in that plane, and valid).
 //! * Closing the MT after a cut (the pool merged back into arcs after a read-only check
 //!   of its order, levels and arc lists derived again, the vertex ids of every tet
 //!   checked) costs time in proportion to the pool and the DAG, not to the cut: the DAG
@@ -196,8 +197,9 @@
 //!   each; a turning blade ending inside fandisk works. Still refused: some steps at
 //!   steeper angles (the same tilt in 20 steps, on the three meshes) and of a turning
 //!   blade ending inside pinion or liver (a shallow incision turning by 4°, 8° and 16°
-//!   per step: 3, 1 and 1 of its steps on pinion, 8, 4 and 2 on liver; 5, 2 and 1 on
-//!   pinion before tets were joined), where one level needs a tip whole and another
+//!   per step, each refused step skipped: 1, 1 and 1 of its 17 steps on pinion, 7, 4 and
+//!   2 on liver, measured again in stop 41; 3, 1, 1 and 8, 4, 2 some stops before; 5, 2
+//!   and 1 on pinion before tets were joined), where one level needs a tip whole and another
 //!   needs it split, which one copy per tip cannot give. Tried and dropped: deciding the
 //!   copies by the groups tets form around each tip (joined through faces), the same over
 //!   all levels, instead of by position — the two cracks' fronts leave slivers between
