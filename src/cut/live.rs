@@ -167,8 +167,7 @@ pub struct LiveCut {
     /// Time of the whole call (the current mesh's cut and the bookkeeping).
     pub seconds: f64,
     /// The polygon lay close to the plane of an earlier cut of this model without lying in
-    /// it, and was cut in that plane ([`PLANE_SNAP`]), here and
-    /// on the MT.
+    /// it, and was cut in that plane ([`PLANE_SNAP`]), here and on the MT.
     pub moved_to_plane: bool,
 }
 
@@ -745,10 +744,11 @@ impl LiveMt {
 /// The MT cut at rest by `polygon` that a fold falls back to, given back (as a refused cut)
 /// when it leaves the finest, the coarsest or the live `resolution`'s mesh invalid. Such a
 /// polygon, mapped from the deformed space, lies close to the plane of the blade's earlier
-/// steps without lying in it, where the MT cut's own checks (of the fragments it changed)
-/// miss what it can do to a whole mesh: measured, a bend growing by 5 % per step left the
-/// liver's coarsest mesh with a vertex joining two boundary fans. The check extracts those
-/// meshes; a fold is rare.
+/// steps without lying in it, where the MT cut's own checks (of the fragments it changed,
+/// and of the finest and coarsest meshes' snapped vertices) miss what it can do to a mesh
+/// between: measured once, before those vertices were analysed on the coarsest mesh too
+/// and polygons that close were cut in the earlier plane (see the module docs). The check
+/// extracts those meshes; a fold is rare.
 fn cut_checked(
     cutter: &mut MtCutter,
     resolution: &ExtractOptions,
