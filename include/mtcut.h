@@ -1206,8 +1206,8 @@ mtcut_status mtcut_mt_build(const struct mtcut_mesh *mesh,
  * independent models in the same handle (`mtcut_mt_statistics` counts them as
  * components). Polygon rules as in `mtcut_mesh_cut`. `stats_or_null`, if given, receives the counts over all levels
  * (`tets_after`/`vertices_after`: the model's tets and vertices over all levels). A
- * polygon close to the plane of one of the model's last cuts without lying in it is cut
- * in that plane (`polygons_moved_to_plane`).
+ * polygon close to the plane of a crack an earlier cut made at rest (the model keeps every
+ * such plane) without lying in it is cut in that plane (`polygons_moved_to_plane`).
  *
  * The model keeps the record of its last cuts (saved with it by `mtcut_mt_save`): a call
  * whose polygon begins where the last one's crack ended, at an angle (a turning or

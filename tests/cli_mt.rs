@@ -89,11 +89,13 @@ fn build_json_has_the_documented_keys_and_agrees_with_info() {
             "problems",
             "cut_vertices_from",
             "cuts_recorded",
+            "crack_planes",
         ],
     );
     assert_eq!(i["kind"], "mt");
-    assert_eq!(i["file_version"], 2);
+    assert_eq!(i["file_version"], 3);
     assert_eq!(i["cuts_recorded"], 0);
+    assert_eq!(i["crack_planes"], 0);
     assert_eq!(i["cut_vertices_from"], i["vertices"]);
     assert_eq!(i["valid"], true, "{i}");
     assert_eq!(i["components"], 1);
@@ -177,7 +179,7 @@ fn info_recognises_a_model_by_its_magic_bytes() {
     assert_eq!(info_mt(&disguised)["kind"], "mt");
     let text = ok(&["info", s(&disguised)]);
     for needle in [
-        "file version 2",
+        "file version 3",
         "cuts       none",
         "fragments",
         "DAG depth",

@@ -115,6 +115,8 @@ fn a_model_cut_through_becomes_two_components_that_keep_the_volume() {
     assert_eq!(info["kind"], "mt");
     assert_eq!(info["valid"], true, "{info}");
     assert_eq!(info["components"], 2);
+    // The cut's plane is kept in the file: a later cut close to it is made in it.
+    assert_eq!(info["crack_planes"], 1, "{info}");
 
     // The parts' finest levels: valid meshes in one piece each, volumes adding up to the
     // input's; the coarsest: valid too.
@@ -208,6 +210,7 @@ fn text_reports_say_what_the_cut_did() {
     }
     let info = ok(&["info", s(&out)]);
     assert!(info.contains("2 component(s)"), "{info}");
+    assert!(info.contains("1 crack plane(s)"), "{info}");
     let part = dir.join("part.vtu");
     let text = ok(&[
         "extract",

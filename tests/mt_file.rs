@@ -189,8 +189,9 @@ fn attributes_survive_the_file() {
 }
 
 /// Bytes at the end of the payload that hold the cut record of an MT no cut changed and no
-/// cutter prepared: the first vertex made by a cut (u32), no cuts (u64), no scales (u64).
-const EMPTY_RECORD: usize = 4 + 8 + 8;
+/// cutter prepared: the first vertex made by a cut (u32), no cuts (u64), no scales (u64),
+/// no crack planes (u64).
+const EMPTY_RECORD: usize = 4 + 8 + 8 + 8;
 
 /// A file written before cuts were recorded (format version 1: the same payload without the
 /// cut record) loads as the MT it holds, with no vertex made by a cut.
@@ -228,6 +229,7 @@ fn a_cut_model_keeps_its_cut_record() {
     assert_eq!(record.cut_vertices_from(), mt.nb_vertices());
     assert!(cut.nb_vertices() > mt.nb_vertices());
     assert_eq!(record.cuts_kept(), 1);
+    assert_eq!(record.planes_kept(), 1);
     assert_eq!(record.vertex_scales().len(), cut.nb_vertices());
     let bytes = cut.to_bytes();
     let back = Mt::from_bytes(&bytes).unwrap();
@@ -244,4 +246,24 @@ fn a_cut_model_keeps_its_cut_record() {
     let e = Mt::from_bytes(&beyond).unwrap_err();
     assert!(matches!(e, MtFileErrorKind::Corrupt(_)), "{e}");
     assert!(e.to_string().contains("cut record"), "{e}");
+
+    // A crack plane whose normal is not finite: refused, naming the record.
+    let mut nan = bytes.clone();
+    let at = nan.len() - 48;
+    nan[at..at + 8].copy_from_slice(&f64::NAN.to_le_bytes());
+    reseal(&mut nan);
+    let e = Mt::from_bytes(&nan).unwrap_err();
+    assert!(matches!(e, MtFileErrorKind::Corrupt(_)), "{e}");
+    assert!(e.to_string().contains("cut record: plane 0"), "{e}");
+
+    // Written by version 2 (the same payload without the planes): the planes are those of
+    // the cuts it kept, here the one cut's.
+    let mut v2 = bytes.clone();
+    v2.truncate(v2.len() - (8 + 48));
+    v2[8..12].copy_from_slice(&2u32.to_le_bytes());
+    let len = (v2.len() - HEADER) as u64;
+    v2[16..24].copy_from_slice(&len.to_le_bytes());
+    reseal(&mut v2);
+    let back = Mt::from_bytes(&v2).unwrap();
+    assert!(back == cut, "the version 2 file loads another MT");
 }

@@ -153,7 +153,8 @@
 //!   mesh): a later cut can cross an earlier polygon in that band.
 //! * **A cut close to an earlier crack's plane is made in that plane.** A polygon whose
 //!   corners all lie within [`PLANE_SNAP`] (1e-5) of the model's bounding-box diagonal from
-//!   the plane of one of the cuts kept in the record (the last eight at rest), its normal
+//!   the plane of a crack an earlier cut at rest made (the record keeps each such plane
+//!   once, in the `.mt` file too, however many cuts followed), its normal
 //!   within [`PLANE_SNAP_ANGLE`](crate::geom::PLANE_SNAP_ANGLE) of that plane's, and not in
 //!   it already (to 1e-9), is projected onto that plane before anything is decided
 //!   ([`MtCutStats::moved_to_plane`]; the corners move by at most that distance). Such a
@@ -161,7 +162,9 @@
 //!   amounts below any snapping distance, which the levels decided differently: measured,
 //!   a second band overlapping a partial first one, offset by 1e-12 to 1e-5 of the
 //!   diagonal and tilted by 1e-9 to 1e-5, in three planes through the three shared meshes,
-//!   was refused in 52 of 180 cases; in none once moved. Snapping the crack's vertices
+//!   was refused in 52 of 180 cases; in none once moved (and with eight cuts elsewhere
+//!   between the two bands, 12 of 60 were refused while only the last eight cuts' planes
+//!   were kept; none now). Snapping the crack's vertices
 //!   onto the new plane instead (within 1e-5 or 1e-4 of their scale) was refused more. A
 //!   cut of a deformed body (`cut_deformed`) is not moved here: the live model moves its
 //!   polygons where they were given ([`super::live`]).
@@ -295,8 +298,8 @@ pub struct MtCutStats {
     /// Vertices left unsnapped: in the finest or the coarsest mesh their tets do not form
     /// one group per side, which one copy per side cannot separate.
     pub vertices_unsnapped: usize,
-    /// The polygon lay close to the plane of one of the last cuts without lying in it, and
-    /// was cut in that plane ([`PLANE_SNAP`]).
+    /// The polygon lay close to the plane of an earlier crack made at rest without lying in
+    /// it, and was cut in that plane ([`PLANE_SNAP`]).
     pub moved_to_plane: bool,
     /// Independent MTs after the cut.
     pub components: usize,
@@ -1900,7 +1903,8 @@ impl MadeBy {
 
 impl Made {
     /// Keeps what a cut by `polygon` appended from vertex `first`: `origins`, then a copy
-    /// of each of `copies`; `taken`: the turning tips it took (sorted).
+    /// of each of `copies`; `taken`: the turning tips it took (sorted). Its plane joins the
+    /// planes kept unless it lies in one of them.
     fn record(
         &mut self,
         polygon: &CutPolygon,
@@ -1937,16 +1941,13 @@ impl Made {
         if self.cuts.len() > Made::RECENT {
             self.cuts.remove(0);
         }
+        self.keep_plane(polygon);
     }
 
-    /// `polygon` moved onto the plane of a kept cut it lies close to, within `distance`,
-    /// without lying in it ([`snap_to_plane`]).
+    /// `polygon` moved onto the plane of an earlier crack it lies close to, within
+    /// `distance`, without lying in it ([`snap_to_plane`]).
     fn near_plane(&self, polygon: &CutPolygon, distance: f64) -> Option<CutPolygon> {
-        let planes = self.cuts.iter().map(|c| {
-            let plane = c.polygon.plane();
-            (plane.normal, plane.points[0])
-        });
-        snap_to_plane(polygon, planes, distance)
+        snap_to_plane(polygon, self.planes.iter().map(|&[n, p]| (n, p)), distance)
     }
 
     /// The cut that appended `v` (an index in `cuts`) and its kind, if a kept cut did.

@@ -14,10 +14,10 @@ mod predicates;
 mod tolerance;
 
 pub use plane::Plane;
-pub(crate) use polygon::snap_to_plane;
 pub use polygon::{
     CutPolygon, PLANE_SNAP, PLANE_SNAP_ANGLE, PolygonError, SWEEP_PLANARITY, scalpel_sweep,
 };
+pub(crate) use polygon::{lies_in_plane, snap_to_plane};
 pub use predicates::{
     Sign, orient2d, orient3d, signed_volume, signed_volume_inexact, triangle_area, triangle_normal,
 };

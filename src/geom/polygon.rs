@@ -394,18 +394,12 @@ pub(crate) fn snap_to_plane(
     planes: impl Iterator<Item = (DVec3, DVec3)>,
     distance: f64,
 ) -> Option<CutPolygon> {
-    let b = polygon.bbox();
-    let rounding = 1e-9 * (b.min.abs().max(b.max.abs()).max_element() + polygon.diameter());
+    let rounding = in_plane_rounding(polygon);
     let mut nearest: Option<(f64, DVec3, DVec3)> = None;
     for (normal, point) in planes {
-        if polygon.normal().cross(normal).length() > PLANE_SNAP_ANGLE.sin() {
+        let Some(far) = plane_offset(polygon, normal, point) else {
             continue;
-        }
-        let far = polygon
-            .points()
-            .iter()
-            .map(|p| normal.dot(*p - point).abs())
-            .fold(0.0, f64::max);
+        };
         if far <= rounding {
             return None;
         }
@@ -420,6 +414,41 @@ pub(crate) fn snap_to_plane(
         .map(|p| *p - normal * normal.dot(*p - point))
         .collect();
     CutPolygon::new(&projected).ok()
+}
+
+/// Whether `polygon` lies in one of `planes` (each a unit normal and a point) to the
+/// rounding by which [`snap_to_plane`] leaves it in place: a cut in a plane already
+/// recorded.
+pub(crate) fn lies_in_plane(
+    polygon: &CutPolygon,
+    mut planes: impl Iterator<Item = (DVec3, DVec3)>,
+) -> bool {
+    let rounding = in_plane_rounding(polygon);
+    planes.any(|(normal, point)| {
+        plane_offset(polygon, normal, point).is_some_and(|far| far <= rounding)
+    })
+}
+
+/// How far `polygon`'s farthest corner lies from the plane through `point` with unit
+/// `normal`; `None` when their normals differ by more than [`PLANE_SNAP_ANGLE`].
+fn plane_offset(polygon: &CutPolygon, normal: DVec3, point: DVec3) -> Option<f64> {
+    if polygon.normal().cross(normal).length() > PLANE_SNAP_ANGLE.sin() {
+        return None;
+    }
+    Some(
+        polygon
+            .points()
+            .iter()
+            .map(|p| normal.dot(*p - point).abs())
+            .fold(0.0, f64::max),
+    )
+}
+
+/// The distance below which `polygon` lies in a plane: 1e-9 of its corners' coordinates
+/// and of its size (see [`snap_to_plane`]).
+fn in_plane_rounding(polygon: &CutPolygon) -> f64 {
+    let b = polygon.bbox();
+    1e-9 * (b.min.abs().max(b.max.abs()).max_element() + polygon.diameter())
 }
 
 /// The polygons swept by a straight blade moving during one time step: the segment

@@ -3,7 +3,7 @@
 //! ```text
 //! offset  size  field
 //!      0     8  magic "MTCUTMT\0"
-//!      8     4  format version (u32), currently 2 (version 1 is read too)
+//!      8     4  format version (u32), currently 3 (versions 1 and 2 are read too)
 //!     12     4  flags (u32), 0 (reserved)
 //!     16     8  payload length in bytes (u64)
 //!     24     4  CRC-32 (IEEE 802.3) of the payload (u32)
@@ -22,7 +22,9 @@
 //! (u32), the number of cuts kept (u64), and per cut its polygon (u64 point count, 3 f64
 //! each), first appended vertex (u32), kinds of its appended vertices (u64 count, a u8
 //! each) and the tips it took (u64 count, u32 each), then the vertex scales (u64 count,
-//! 0 or the vertex count, f64 each). A version 1 file (written before cuts
+//! 0 or the vertex count, f64 each); then (version 3) the planes of the cracks made at
+//! rest (u64 count, each a unit normal and a point, 6 f64). A version 2 file takes the
+//! planes of the cuts it kept (the last eight); a version 1 file (written before cuts
 //! were recorded) loads with an empty record: every vertex as built, none made by a cut.
 //!
 //! Only primary data is stored; levels, boxes and arc lists are derived on loading by the
@@ -45,7 +47,7 @@ use std::path::{Path, PathBuf};
 /// First bytes of every `.mt` file.
 pub const MT_MAGIC: [u8; 8] = *b"MTCUTMT\0";
 /// The format version this library writes; it reads this one and every earlier one.
-pub const MT_FILE_VERSION: u32 = 2;
+pub const MT_FILE_VERSION: u32 = 3;
 const HEADER: usize = 32;
 
 /// What is wrong with an `.mt` file.
@@ -182,6 +184,12 @@ impl Mt {
         w.u64(cuts.scales.len() as u64);
         for &x in &cuts.scales {
             w.f64(x);
+        }
+        w.u64(cuts.made.planes.len() as u64);
+        for plane in &cuts.made.planes {
+            for x in plane.iter().flat_map(|v| v.to_array()) {
+                w.f64(x);
+            }
         }
         let payload = w.0;
         let mut crc = flate2::Crc::new();
@@ -341,8 +349,9 @@ impl<'a> Reader<'a> {
             })
             .collect())
     }
-    /// The cut record; its indices are checked with the rest by [`Mt::assemble`].
-    fn cut_history(&mut self) -> Result<CutHistory, String> {
+    /// The cut record of a file of `version` (2 or later); its indices are checked with
+    /// the rest by [`Mt::assemble`].
+    fn cut_history(&mut self, version: u32) -> Result<CutHistory, String> {
         let cut_vertices_from = self.u32("first vertex made by a cut")?;
         let n = self.count("cuts recorded", 40)?;
         let mut cuts = Vec::with_capacity(n.min(Made::RECENT));
@@ -373,9 +382,31 @@ impl<'a> Reader<'a> {
         }
         let ns = self.count("vertex scale count", 8)?;
         let scales = self.f64s(ns, "vertex scales")?;
+        let mut made = Made {
+            cuts,
+            planes: Vec::new(),
+        };
+        match version {
+            // Before planes were kept: those of the cuts kept.
+            2 => {
+                let cuts = std::mem::take(&mut made.cuts);
+                for c in &cuts {
+                    made.keep_plane(&c.polygon);
+                }
+                made.cuts = cuts;
+            }
+            _ => {
+                let np = self.count("cut plane count", 48)?;
+                made.planes = self
+                    .f64s(np * 6, "cut planes")?
+                    .chunks_exact(6)
+                    .map(|c| [DVec3::new(c[0], c[1], c[2]), DVec3::new(c[3], c[4], c[5])])
+                    .collect();
+            }
+        }
         Ok(CutHistory {
             cut_vertices_from,
-            made: Made { cuts },
+            made,
             scales,
         })
     }
@@ -459,7 +490,7 @@ fn parse(payload: &[u8], version: u32) -> Result<Mt, String> {
     let cell_data = r.attributes("cell data")?;
     info.cuts = match version {
         1 => CutHistory::new(nv),
-        _ => r.cut_history()?,
+        v => r.cut_history(v)?,
     };
     if r.at != payload.len() {
         return Err(format!(

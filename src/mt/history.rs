@@ -6,15 +6,16 @@
 //! This layer only stores, checks and renumbers the record; the cut layer
 //! (`crate::cut::mt_cut`) writes and reads it: the length each vertex's tolerances are
 //! measured by (derived again from a cut finest mesh it would differ near the cracks),
-//! which vertices cuts appended (all lie on cracks), and, for the last few cuts made at
-//! rest, the polygon and what each appended
+//! which vertices cuts appended (all lie on cracks), the plane of every crack made at rest
+//! (a cut close to one is made in it), and, for the last few cuts made at rest, the
+//! polygon and what each appended
 //! vertex is (a tip, a lip of either side, a copy where two cracks meet) and the tips of
 //! earlier cracks the cut took onto its own — what a cut continuing one of them at an angle
 //! (a turning or tilting scalpel, paper §5) needs.
 //!
 //! [`MtInfo`]: super::MtInfo
 
-use crate::geom::CutPolygon;
+use crate::geom::{CutPolygon, DVec3, lies_in_plane};
 use crate::mesh::VertexId;
 
 /// The cut record of an MT (see the [module docs](self)).
@@ -31,11 +32,16 @@ pub struct CutHistory {
 }
 
 /// The last cuts at rest of an MT, oldest first: what a later cut that continues one at
-/// an angle reads (the cut layer's `TurnTips`). Cuts of a deformed body (their polygons lie
-/// in another frame) are not kept: a cut continuing one of those at an angle is refused.
+/// an angle reads (the cut layer's `TurnTips`); and the planes of all the cuts at rest
+/// that made a crack, each once: a later cut close to one of them is made in it (the cut
+/// layer's `snap_to_plane`), however many cuts came between. Cuts of a deformed body
+/// (their polygons lie in another frame) are not kept: a cut continuing one of those at an
+/// angle is refused.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct Made {
     pub(crate) cuts: Vec<MadeBy>,
+    /// Unit normal and a point of each plane, in the order the cuts first met them.
+    pub(crate) planes: Vec<[DVec3; 2]>,
 }
 
 /// One cut at rest: its polygon and the vertices it appended.
@@ -58,6 +64,14 @@ impl Made {
     /// an angle (a blade's step continues the step before it; a tilting blade's second
     /// triangle, the first).
     pub(crate) const RECENT: usize = 8;
+
+    /// Keeps the plane of `polygon`, a crack's, unless the polygon lies in a plane kept.
+    pub(crate) fn keep_plane(&mut self, polygon: &CutPolygon) {
+        if !lies_in_plane(polygon, self.planes.iter().map(|&[n, p]| (n, p))) {
+            let plane = polygon.plane();
+            self.planes.push([plane.normal, plane.points[0]]);
+        }
+    }
 }
 
 impl CutHistory {
@@ -73,6 +87,12 @@ impl CutHistory {
     /// How many cuts the record describes (the last at rest; at most 8).
     pub fn cuts_kept(&self) -> usize {
         self.made.cuts.len()
+    }
+
+    /// How many planes the record keeps (those of every cut at rest that made a crack,
+    /// each once).
+    pub fn planes_kept(&self) -> usize {
+        self.made.planes.len()
     }
 
     /// The first vertex appended by a cut (every vertex from it on lies on a crack; the
@@ -105,6 +125,14 @@ impl CutHistory {
                 "cut record: vertex {v} has scale {}, not a finite length",
                 self.scales[v]
             ));
+        }
+        for (i, [n, p]) in self.made.planes.iter().enumerate() {
+            if !(n.is_finite() && p.is_finite() && (n.length() - 1.0).abs() <= 1e-9) {
+                return Err(format!(
+                    "cut record: plane {i} (normal {n}, point {p}) has no finite unit normal \
+                     and finite point"
+                ));
+            }
         }
         let nv = nb_vertices as u64;
         if u64::from(self.cut_vertices_from) > nv {
@@ -152,7 +180,9 @@ impl CutHistory {
     /// vertex `v`, increasing over the kept ones; `u32::MAX`: dropped), as
     /// [`Mt::component`](super::Mt::component) renumbers them. A cut's kept vertices stay
     /// consecutive (no kept vertex lies between them); a cut none of whose vertices is kept
-    /// is dropped.
+    /// is dropped. The planes are all kept (they name no vertex: a cut of this part close
+    /// to the plane of a crack left in another part is moved onto it, by at most
+    /// [`PLANE_SNAP`](crate::geom::PLANE_SNAP) of the diagonal, as before the split).
     pub(crate) fn renumbered(&self, new_id: &[u32]) -> CutHistory {
         let kept = |v: usize| new_id[v] != u32::MAX;
         let from = self.cut_vertices_from as usize;
@@ -186,6 +216,7 @@ impl CutHistory {
             cut_vertices_from,
             made: Made {
                 cuts: cuts.collect(),
+                planes: self.made.planes.clone(),
             },
             scales,
         }
@@ -194,6 +225,7 @@ impl CutHistory {
     /// Heap bytes held.
     pub(crate) fn heap_bytes(&self) -> usize {
         self.scales.capacity() * 8
+            + self.made.planes.capacity() * std::mem::size_of::<[DVec3; 2]>()
             + self
                 .made
                 .cuts

@@ -963,6 +963,7 @@ impl MtSummary {
             "feature_angle_degrees": self.info.feature_angle_degrees,
             "cut_vertices_from": self.info.cuts.cut_vertices_from(),
             "cuts_recorded": self.info.cuts.cuts_kept(),
+            "crack_planes": self.info.cuts.planes_kept(),
         })
     }
 }

@@ -233,9 +233,11 @@ impl ModelInfo {
         if cuts.cut_vertices_from() < s.vertices {
             out!(
                 "cuts       vertices {}.. made by cuts; the last {} at rest recorded (a cut \
-                 continuing one at an angle reads them)",
+                 continuing one at an angle reads them); {} crack plane(s) (a cut close to \
+                 one is made in it)",
                 cuts.cut_vertices_from(),
-                cuts.cuts_kept()
+                cuts.cuts_kept(),
+                cuts.planes_kept()
             );
         } else {
             out!("cuts       none");
