@@ -551,3 +551,30 @@ fn a_cut_close_to_an_earlier_cuts_plane_is_made_in_it_here_and_on_the_mt() {
         }
     }
 }
+
+/// The same when the first cut was made on the MT before the live model (a model saved
+/// and loaded, say): the live model takes the planes of the MT's earlier cracks from its
+/// cut record, so the second cut is moved onto the first's plane on the current mesh as on
+/// the MT, and the current mesh maps back. Before, only the MT cut moved it, and the
+/// current mesh was replaced by the MT's extraction when the queue drained (`remeshed`:
+/// a new numbering for the host), on every shared mesh.
+#[test]
+fn a_live_model_takes_the_planes_of_the_mts_earlier_cracks() {
+    for name in mt_common::MESHES {
+        let mt = mt_common::built(name).1.clone();
+        let b = mtcut::geom::Aabb::from_points(mt.positions());
+        let [first, second] =
+            mtcut_common::nearly_coplanar_bands(b.center(), b.diagonal(), 1e-7, 0.0);
+        let mut c = MtCutter::new(mt, MtCutter::DEFAULT_OPTIONS).expect("cutter");
+        c.cut(&first).expect("first cut");
+        let mt = Mt::from_bytes(&c.into_mt().to_bytes()).expect("saved and loaded");
+        let resolution = middle(&mt);
+        let mut l = LiveMt::new(mt, &resolution, MtCutter::DEFAULT_OPTIONS).expect("live");
+        let cut = l.cut(&second).expect("second cut");
+        assert!(cut.moved_to_plane && cut.stats.tets_cut > 0, "{name}");
+        let r = l.process_pending(PendingBudget::All).expect("pending");
+        assert!(r.refused.is_empty() && !r.remeshed, "{name}: {r:?}");
+        assert!(r.cuts.iter().all(|s| !s.moved_to_plane), "{name}: {r:?}");
+        check(&l, name);
+    }
+}

@@ -79,7 +79,9 @@
 //! * A cut given close to the plane of an earlier cut of the model without lying in it
 //!   (within [`PLANE_SNAP`] of the model's size, a blade re-entering an incision) is made
 //!   in that plane, on the current mesh and on the MT alike ([`LiveCut::moved_to_plane`];
-//!   see [`super::mt_cut`]'s limits for why).
+//!   see [`super::mt_cut`]'s limits for why). The earlier cuts are this model's and those
+//!   the MT's cut record keeps the planes of (cuts at rest before the live model was
+//!   made, a model saved and loaded).
 //! * A queued cut is processed whole: [`process_pending`](LiveMt::process_pending) checks
 //!   its budget between cuts, so it may overrun by one cut (the DAG update of a cut is one
 //!   step over all its fragments, [`super::mt_cut`]).
@@ -166,8 +168,9 @@ pub struct LiveCut {
     pub pending: usize,
     /// Time of the whole call (the current mesh's cut and the bookkeeping).
     pub seconds: f64,
-    /// The polygon lay close to the plane of an earlier cut of this model without lying in
-    /// it, and was cut in that plane ([`PLANE_SNAP`]), here and on the MT.
+    /// The polygon lay close to the plane of an earlier cut of this model (or of a crack
+    /// the MT's record keeps) without lying in it, and was cut in that plane
+    /// ([`PLANE_SNAP`]), here and on the MT.
     pub moved_to_plane: bool,
 }
 
@@ -259,6 +262,21 @@ struct CutPlane {
     current_epoch: u64,
 }
 
+impl CutPlane {
+    /// A plane no cut of this model was given in yet.
+    fn new(normal: DVec3, point: DVec3) -> CutPlane {
+        CutPlane {
+            normal,
+            point,
+            broken: false,
+            mt: Vec::new(),
+            mt_epoch: u64::MAX,
+            current: Vec::new(),
+            current_epoch: u64::MAX,
+        }
+    }
+}
+
 impl LiveMt {
     /// A live model on `mt` (which should be valid), its current mesh extracted at
     /// `resolution` and at rest, cut with `options` (an MT cut's: see [`MtCutter::new`]).
@@ -272,6 +290,11 @@ impl LiveMt {
         let rest = e.mesh.positions().to_vec();
         let current = current_cutter(&cutter, e.mesh, &e.vertex_ids)?;
         let first_cut_vertex = cutter.mt().nb_vertices();
+        // The planes of the cracks the MT's earlier cuts made at rest (its cut record): a
+        // cut close to one is moved onto it here as the MT cut moves it, so the current
+        // mesh's cut maps back (not moved, it was remeshed when the queue drained).
+        let planes = cutter.mt().info().cuts.made.planes.iter();
+        let planes = planes.map(|&[n, p]| CutPlane::new(n, p)).collect();
         let mut live = LiveMt {
             cut_origins: Vec::new(),
             first_cut_vertex,
@@ -279,7 +302,7 @@ impl LiveMt {
             epoch: 0,
             placement: None,
             new_rest: OriginPositions::default(),
-            planes: Vec::new(),
+            planes,
             cutter,
             resolution: *resolution,
             current,
@@ -611,15 +634,8 @@ impl LiveMt {
     /// [`plane_of`](Self::plane_of), the plane added when new.
     fn plane_index(&mut self, polygon: &CutPolygon) -> usize {
         self.plane_of(polygon).unwrap_or_else(|| {
-            self.planes.push(CutPlane {
-                normal: polygon.normal(),
-                point: polygon.plane().points[0],
-                broken: false,
-                mt: Vec::new(),
-                mt_epoch: u64::MAX,
-                current: Vec::new(),
-                current_epoch: u64::MAX,
-            });
+            self.planes
+                .push(CutPlane::new(polygon.normal(), polygon.plane().points[0]));
             self.planes.len() - 1
         })
     }
