@@ -256,10 +256,13 @@ fn a_cut_model_keeps_its_cut_record() {
     assert!(matches!(e, MtFileErrorKind::Corrupt(_)), "{e}");
     assert!(e.to_string().contains("cut record: plane 0"), "{e}");
 
-    // Written by version 2 (the same payload without the planes): the planes are those of
-    // the cuts it kept, here the one cut's.
+    // Written by version 2 (the same payload without the cut's frame, 0 at rest, and the
+    // planes): the planes are those of the cuts it kept, here the one cut's.
     let mut v2 = bytes.clone();
     v2.truncate(v2.len() - (8 + 48));
+    let frame_at = v2.len() - (8 + 8 * cut.nb_vertices()) - 8;
+    assert_eq!(v2[frame_at..frame_at + 8], [0; 8]);
+    v2.drain(frame_at..frame_at + 8);
     v2[8..12].copy_from_slice(&2u32.to_le_bytes());
     let len = (v2.len() - HEADER) as u64;
     v2[16..24].copy_from_slice(&len.to_le_bytes());

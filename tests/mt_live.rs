@@ -578,3 +578,36 @@ fn a_live_model_takes_the_planes_of_the_mts_earlier_cracks() {
         check(&l, name);
     }
 }
+
+/// A blade turning by 8° per step across fandisk (a vertical blade on an arc, 15 steps)
+/// under a body bent by 0.5 % of its diagonal before the sweep: each step continues the
+/// last at an angle in the same deformed frame (the MT's cut record keeps a deformed
+/// body's cuts with the frame they were made in), so no step is refused, every step maps
+/// back, and the corner comes off; the model, saved and loaded, keeps that record. Before,
+/// steps 3, 5 and 7 were refused and the body stayed whole.
+#[test]
+fn a_blade_turning_across_a_bent_body_takes_every_step() {
+    let mut l = scalpel_live("fandisk");
+    let b = mtcut::geom::Aabb::from_points(l.mt().positions());
+    let d = diag(l.mesh());
+    let rest = l.rest_positions().to_vec();
+    l.set_positions(&bend(&rest, 0.005, d)).expect("bend");
+    let path: Vec<_> = (0..16)
+        .map(|k| blades::on_arc(&b, -8.0 + 8.0 * k as f64))
+        .collect();
+    for (k, w) in path.windows(2).enumerate() {
+        for p in scalpel_sweep(w[0], w[1], SWEEP_PLANARITY).expect("sweep") {
+            let case = format!("step {k}");
+            l.cut(&p).unwrap_or_else(|e| panic!("{case}: {e}"));
+            let r = l
+                .process_pending(PendingBudget::All)
+                .unwrap_or_else(|e| panic!("{case}: {e}"));
+            assert!(r.refused.is_empty() && !r.remeshed, "{case}: {r:?}");
+            check(&l, &case);
+        }
+    }
+    assert_eq!(l.mt().nb_components(), 2);
+    let mt = l.into_mt().expect("into_mt");
+    let back = Mt::from_bytes(&mt.to_bytes()).expect("saved and loaded");
+    assert!(back == mt, "the loaded model differs");
+}

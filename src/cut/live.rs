@@ -71,17 +71,20 @@
 //!   30 %): the only steps refused were a fold's fallback cut at rest and a step after one
 //!   (that cut's crack does not lie in the plane: nothing is glued in it after); before,
 //!   the liver refused steps at the gentlest motion. A blade
-//!   *turning* between the steps of a deformed body is not handled: a cut of a deformed
-//!   body keeps no record for the next step to turn from (see [`super::mt_cut`]'s limits).
-//!   Some such steps are refused — [`process_pending`](LiveMt::process_pending) drops the
-//!   cut and reports it ([`PendingReport::refused`]), the current mesh extracted again
-//!   without it — and the others leave the two cracks apart. Measured (a vertical blade
-//!   on an arc turning 8° per step across each shared mesh, 15 steps, the queue drained
-//!   after each): at rest nothing is refused and the corner comes off (the current mesh
-//!   replaced 1, 2 and 4 times on fandisk, pinion and liver, where the two parts decided
-//!   a step differently); the body bent by 0.5 % of its diagonal before the sweep, every
-//!   other step from the fourth is refused (3, 4 and 4 steps) and the body stays in one
-//!   piece; bent 2 % more at every step, one step is refused (pinion's) but the body
+//!   *turning* between the steps of a deformed body is handled only while the body does
+//!   not move between them: the MT cut continues a cut at an angle only in the frame it
+//!   was made in (see [`super::mt_cut`]'s limits). After a motion, some such steps are
+//!   refused — [`process_pending`](LiveMt::process_pending) drops the cut and reports it
+//!   ([`PendingReport::refused`]), the current mesh extracted again without it — and the
+//!   others leave the two cracks apart. Measured (a vertical blade on an arc turning 8°
+//!   per step across each shared mesh, 15 steps, the queue drained after each): at rest
+//!   nothing is refused and the corner comes off (the current mesh replaced 1, 2 and 4
+//!   times on fandisk, pinion and liver, where the two parts decided a step differently);
+//!   the body bent by 0.5 % of its diagonal before the sweep, nothing is refused on
+//!   fandisk, which loses its corner with every step mapped back (tests/mt_live.rs), and 1
+//!   and 2 steps on pinion and liver, which stay in one piece (3, 4 and 4 steps were
+//!   refused, every other one from the fourth, before the MT kept deformed cuts with their
+//!   frame); bent 2 % more at every step, one step is refused (pinion's) but the body
 //!   stays in one piece on the three meshes, joined through faces (likely where two
 //!   steps' cracks fail to meet: the motion moves the last crack's end off the line the
 //!   next step begins on, and nothing glues it for a step at an angle; not examined).

@@ -212,8 +212,11 @@
 //!   own points as on the earlier plane (more steps refused); a taken tip as a lip of the
 //!   side its tets keep (every 20-step tilt cut, but on fandisk the bodies' tets then held
 //!   each other's vertices on coarser levels, and the MT stayed one component). A cut of
-//!   a deformed body (`cut_deformed`) keeps no record: a step continuing one of those at
-//!   an angle is refused as before (one continuing it in its plane after the body moved
+//!   a deformed body (`cut_deformed`) is recorded with its frame (a fingerprint of the
+//!   positions it decided at, `Frames`): a step continuing it at an angle at the same
+//!   positions (the body not moved between) is decided as at rest, in that frame; a
+//!   step after the body moved finds no cut in its frame to turn from, and is refused
+//!   or leaves the cracks apart (one continuing it in its plane after the body moved
 //!   takes the earlier crack's vertices as lying in it: `glued`, see [`super::live`]).
 //!   Before, every such step was refused. Such a
 //!   cut is not left in the MT: before closing, every fragment the cut changed has its
@@ -677,12 +680,12 @@ impl MtCutter {
         };
 
         // Step 1: fragments by box, then the tets they create by vertex states.
-        // Earlier polygons this one continues at an angle (see `TurnTips`): their tips
-        // near the edge they share are on this cut.
-        let turning: Vec<Turning> = match deformed {
-            Some(_) => Vec::new(),
-            None => made.turning(polygon, self.max_scale),
-        };
+        // Earlier polygons this one continues at an angle (see `TurnTips`), made in its
+        // frame (at rest, or at the same deformed positions): their tips near the edge
+        // they share are on this cut.
+        let mut frames = Frames::new(deformed);
+        let turning: Vec<Turning> =
+            made.turning(polygon, self.max_scale, |first| frames.before(first));
         let mut turning_tips = CrackTips::default();
         for t in &turning {
             made.tips(t.cut).for_each(|v| turning_tips.insert(v));
@@ -1306,6 +1309,14 @@ impl MtCutter {
             self.crack[v.idx()] = true;
             self.crack.push(true);
         }
+        // Where a turning tip's tets not seen above are put in or out of the wedge: at the
+        // positions the cut decided at (a deformed body's, new vertices placed there too).
+        let frame_at: Option<Vec<DVec3>> = deformed.filter(|_| !turn.is_empty()).map(|p| {
+            let mut at = p[..nv].to_vec();
+            at.extend(origin_positions(p, &origins));
+            at.extend(copies.iter().map(|v| p[v.idx()]));
+            at
+        });
         // Real tets: children in place of their parents, unsplit tets on the negative side
         // take copies. `touched` lists every real tet the cut changed or may have made a
         // crack face of.
@@ -1321,21 +1332,34 @@ impl MtCutter {
                     if classes[k].touches_cut() {
                         let side = unsplit_side(k);
                         keep(&open, parent.idx(), tets[k]);
-                        open.tets[parent.idx()] =
-                            for_side(tets[k], side, &tets[k], &open.positions);
+                        open.tets[parent.idx()] = for_side(
+                            tets[k],
+                            side,
+                            &tets[k],
+                            frame_at.as_deref().unwrap_or(&open.positions),
+                        );
                         touched.push(parent.0);
                     }
                 }
                 i => {
                     let ch = &children[i as usize];
                     keep(&open, parent.idx(), tets[k]);
-                    open.tets[parent.idx()] =
-                        for_side(ch.tets[0], ch.sides[0], &ch.tets[0], &open.positions);
+                    open.tets[parent.idx()] = for_side(
+                        ch.tets[0],
+                        ch.sides[0],
+                        &ch.tets[0],
+                        frame_at.as_deref().unwrap_or(&open.positions),
+                    );
                     touched.push(parent.0);
                     let (c, d) = (open.creator()[parent.idx()], open.destroyer()[parent.idx()]);
                     for j in 1..ch.len {
                         touched.push(open.tets.len() as u32);
-                        let child = for_side(ch.tets[j], ch.sides[j], &ch.tets[j], &open.positions);
+                        let child = for_side(
+                            ch.tets[j],
+                            ch.sides[j],
+                            &ch.tets[j],
+                            frame_at.as_deref().unwrap_or(&open.positions),
+                        );
                         open.push_tet(child, c, d);
                         appended_parents.push(parent.0);
                     }
@@ -1355,11 +1379,21 @@ impl MtCutter {
                 stats.ghosts_split += 1;
                 let (c, d) = (open.creator()[g], open.destroyer()[g]);
                 keep(&open, g, tet);
-                open.tets[g] = for_side(subs[0].0, subs[0].1, &subs[0].2, &open.positions);
+                open.tets[g] = for_side(
+                    subs[0].0,
+                    subs[0].1,
+                    &subs[0].2,
+                    frame_at.as_deref().unwrap_or(&open.positions),
+                );
                 ghost_touched.push(g as u32);
                 for &(t, side, holder) in &subs[1..] {
                     ghost_touched.push(open.tets.len() as u32);
-                    let sub = for_side(t, side, &holder, &open.positions);
+                    let sub = for_side(
+                        t,
+                        side,
+                        &holder,
+                        frame_at.as_deref().unwrap_or(&open.positions),
+                    );
                     open.push_tet(sub, c, d);
                     appended_parents.push(g as u32);
                 }
@@ -1369,7 +1403,12 @@ impl MtCutter {
                     .copied()
                     .unwrap_or((Side::Positive, tet));
                 keep(&open, g, tet);
-                open.tets[g] = for_side(tet, side, &holder, &open.positions);
+                open.tets[g] = for_side(
+                    tet,
+                    side,
+                    &holder,
+                    frame_at.as_deref().unwrap_or(&open.positions),
+                );
                 ghost_touched.push(g as u32);
             }
         }
@@ -1691,10 +1730,15 @@ impl MtCutter {
         );
         stats.components = self.components;
         self.mt = Some(mt);
-        if deformed.is_none() {
-            let taken = turn.taken();
-            made.record(polygon, nv, &origins, &copies, taken);
-        }
+        let taken = turn.taken();
+        made.record(
+            polygon,
+            nv,
+            &origins,
+            &copies,
+            taken,
+            frames.before(nv as u32),
+        );
         self.last_origins = origins;
         self.last_origins
             .extend(copies.iter().map(|&of| VertexOrigin::Copy { of }));
@@ -1912,6 +1956,7 @@ impl Made {
         origins: &[VertexOrigin],
         copies: &[VertexId],
         taken: Vec<VertexId>,
+        frame: u64,
     ) {
         if origins.is_empty() && copies.is_empty() {
             return;
@@ -1934,6 +1979,7 @@ impl Made {
             .collect();
         self.cuts.push(MadeBy {
             polygon: polygon.clone(),
+            frame,
             first: first as u32,
             kinds,
             taken,
@@ -1941,7 +1987,9 @@ impl Made {
         if self.cuts.len() > Made::RECENT {
             self.cuts.remove(0);
         }
-        self.keep_plane(polygon);
+        if frame == AT_REST {
+            self.keep_plane(polygon);
+        }
     }
 
     /// `polygon` moved onto the plane of an earlier crack it lies close to, within
@@ -1963,9 +2011,19 @@ impl Made {
     }
 
     /// The kept cuts (the last [`Made::RECENT`]) whose polygon `polygon` continues at an
-    /// angle (`turns_from`).
-    fn turning(&self, polygon: &CutPolygon, scale: f64) -> Vec<Turning> {
+    /// angle (`turns_from`), among those made in the frame `frame(first)` gives for a
+    /// cut's first vertex (asked in increasing order).
+    fn turning(
+        &self,
+        polygon: &CutPolygon,
+        scale: f64,
+        mut frame: impl FnMut(u32) -> u64,
+    ) -> Vec<Turning> {
         (0..self.cuts.len() as u32)
+            .filter(|&cut| {
+                let c = &self.cuts[cut as usize];
+                c.frame == frame(c.first)
+            })
             .filter_map(|cut| {
                 let (s_old, s_new) = turns_from(&self.cuts[cut as usize].polygon, polygon, scale)?;
                 Some(Turning { cut, s_old, s_new })
@@ -1979,6 +2037,47 @@ impl Made {
         (0..c.kinds.len())
             .filter(|&k| c.kinds[k] == TIP)
             .map(move |k| VertexId(c.first + k as u32))
+    }
+}
+
+/// [`MadeBy::frame`] of a cut made at rest.
+const AT_REST: u64 = 0;
+
+/// The frames of cuts ([`MadeBy::frame`]) as the positions a cut decides at see them: at
+/// rest, [`AT_REST`]; deformed, a fingerprint of the positions of the vertices before a
+/// cut's first (never `AT_REST`), so that a later cut in the same deformed frame (the
+/// body not moved since: a placement extended by the cuts between, see
+/// [`super::live`]) finds the earlier one in its frame. Asked for prefixes of growing
+/// length, it reads each position once.
+struct Frames<'p> {
+    deformed: Option<&'p [DVec3]>,
+    hash: u64,
+    read: usize,
+}
+
+impl<'p> Frames<'p> {
+    fn new(deformed: Option<&'p [DVec3]>) -> Frames<'p> {
+        Frames {
+            deformed,
+            hash: 0xcbf2_9ce4_8422_2325,
+            read: 0,
+        }
+    }
+
+    /// The frame seen by the vertices before `first` (not below an earlier call's).
+    fn before(&mut self, first: u32) -> u64 {
+        let Some(p) = self.deformed else {
+            return AT_REST;
+        };
+        let end = (first as usize).min(p.len());
+        debug_assert!(end >= self.read, "frames asked for growing prefixes");
+        for x in p[self.read.min(end)..end].iter().flat_map(|v| v.to_array()) {
+            self.hash = (self.hash ^ x.to_bits())
+                .wrapping_mul(0x0000_0100_0000_01b3)
+                .rotate_left(17);
+        }
+        self.read = self.read.max(end);
+        self.hash | 1
     }
 }
 

@@ -21,11 +21,12 @@
 //! then (version 2) the cut record ([`CutHistory`]): the first vertex appended by a cut
 //! (u32), the number of cuts kept (u64), and per cut its polygon (u64 point count, 3 f64
 //! each), first appended vertex (u32), kinds of its appended vertices (u64 count, a u8
-//! each) and the tips it took (u64 count, u32 each), then the vertex scales (u64 count,
-//! 0 or the vertex count, f64 each); then (version 3) the planes of the cracks made at
-//! rest (u64 count, each a unit normal and a point, 6 f64). A version 2 file takes the
-//! planes of the cuts it kept (the last eight); a version 1 file (written before cuts
-//! were recorded) loads with an empty record: every vertex as built, none made by a cut.
+//! each), the tips it took (u64 count, u32 each) and (version 3) the frame it was made in
+//! (u64, 0 at rest), then the vertex scales (u64 count, 0 or the vertex count, f64 each);
+//! then (version 3) the planes of the cracks made at rest (u64 count, each a unit normal
+//! and a point, 6 f64). A version 2 file has its cuts made at rest and takes the planes
+//! of those it kept (the last eight); a version 1 file (written before cuts were
+//! recorded) loads with an empty record: every vertex as built, none made by a cut.
 //!
 //! Only primary data is stored; levels, boxes and arc lists are derived on loading by the
 //! same code that assembles a freshly built MT, which also checks every index, so a file
@@ -180,6 +181,7 @@ impl Mt {
             for v in &c.taken {
                 w.u32(v.0);
             }
+            w.u64(c.frame);
         }
         w.u64(cuts.scales.len() as u64);
         for &x in &cuts.scales {
@@ -373,8 +375,13 @@ impl<'a> Reader<'a> {
                 .into_iter()
                 .map(VertexId)
                 .collect();
+            let frame = match version {
+                2 => 0,
+                _ => self.u64(&format!("cut {i}'s frame"))?,
+            };
             cuts.push(MadeBy {
                 polygon,
+                frame,
                 first,
                 kinds,
                 taken,

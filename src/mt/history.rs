@@ -7,11 +7,11 @@
 //! (`crate::cut::mt_cut`) writes and reads it: the length each vertex's tolerances are
 //! measured by (derived again from a cut finest mesh it would differ near the cracks),
 //! which vertices cuts appended (all lie on cracks), the plane of every crack made at rest
-//! (a cut close to one is made in it), and, for the last few cuts made at rest, the
-//! polygon and what each appended
-//! vertex is (a tip, a lip of either side, a copy where two cracks meet) and the tips of
-//! earlier cracks the cut took onto its own — what a cut continuing one of them at an angle
-//! (a turning or tilting scalpel, paper §5) needs.
+//! (a cut close to one is made in it), and, for the last few cuts (at rest or at the
+//! deformed positions they were made at), the polygon and what each appended vertex is (a
+//! tip, a lip of either side, a copy where two cracks meet) and the tips of earlier cracks
+//! the cut took onto its own — what a cut continuing one of them at an angle (a turning or
+//! tilting scalpel, paper §5) needs.
 //!
 //! [`MtInfo`]: super::MtInfo
 
@@ -23,7 +23,7 @@ use crate::mesh::VertexId;
 pub struct CutHistory {
     /// Vertices from this id on were appended by cuts: every one lies on a crack.
     pub(crate) cut_vertices_from: u32,
-    /// The last cuts made at rest, oldest first (at most [`Made::RECENT`]).
+    /// The last cuts, oldest first (at most [`Made::RECENT`]).
     pub(crate) made: Made,
     /// Per vertex, the length a cut measures its tolerances by (the cut layer's vertex
     /// scales): set when the MT is first prepared for cutting, extended by each cut; empty
@@ -31,12 +31,12 @@ pub struct CutHistory {
     pub(crate) scales: Vec<f64>,
 }
 
-/// The last cuts at rest of an MT, oldest first: what a later cut that continues one at
+/// The last cuts of an MT, oldest first: what a later cut that continues one at
 /// an angle reads (the cut layer's `TurnTips`); and the planes of all the cuts at rest
 /// that made a crack, each once: a later cut close to one of them is made in it (the cut
-/// layer's `snap_to_plane`), however many cuts came between. Cuts of a deformed body
-/// (their polygons lie in another frame) are not kept: a cut continuing one of those at an
-/// angle is refused.
+/// layer's `snap_to_plane`), however many cuts came between. A deformed body's cuts are
+/// kept with their frame (their polygons lie in the deformed space): only a cut in the
+/// same frame continues one of those at an angle; their planes are not kept.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct Made {
     pub(crate) cuts: Vec<MadeBy>,
@@ -44,7 +44,7 @@ pub(crate) struct Made {
     pub(crate) planes: Vec<[DVec3; 2]>,
 }
 
-/// One cut at rest: its polygon and the vertices it appended.
+/// One cut: its polygon (in the frame it was made in) and the vertices it appended.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct MadeBy {
     pub(crate) polygon: CutPolygon,
@@ -52,6 +52,10 @@ pub(crate) struct MadeBy {
     /// the cut layer's kinds, below [`KINDS`]).
     pub(crate) first: u32,
     pub(crate) kinds: Vec<u8>,
+    /// The frame the cut was made in: 0 at rest, else a fingerprint of the deformed
+    /// positions of the vertices before it (a later cut in the same frame may continue it
+    /// at an angle).
+    pub(crate) frame: u64,
     /// The tips of earlier cuts this cut took onto its crack, sorted.
     pub(crate) taken: Vec<VertexId>,
 }
@@ -84,7 +88,7 @@ impl CutHistory {
         }
     }
 
-    /// How many cuts the record describes (the last at rest; at most 8).
+    /// How many cuts the record describes (the last ones; at most 8).
     pub fn cuts_kept(&self) -> usize {
         self.made.cuts.len()
     }
@@ -192,6 +196,7 @@ impl CutHistory {
             let first = range.clone().find(|&v| kept(v))?;
             Some(MadeBy {
                 polygon: c.polygon.clone(),
+                frame: c.frame,
                 first: new_id[first],
                 kinds: range
                     .filter(|&v| kept(v))

@@ -232,7 +232,7 @@ impl ModelInfo {
         let cuts = &i.cuts;
         if cuts.cut_vertices_from() < s.vertices {
             out!(
-                "cuts       vertices {}.. made by cuts; the last {} at rest recorded (a cut \
+                "cuts       vertices {}.. made by cuts; the last {} recorded (a cut \
                  continuing one at an angle reads them); {} crack plane(s) (a cut close to \
                  one is made in it)",
                 cuts.cut_vertices_from(),
