@@ -1162,8 +1162,17 @@ impl MtCutter {
         }
         // The tets of the negative side take the copies, except around a turning tip:
         // there the tets outside the wedge between the two cracks do (`holder` is the real
-        // tet whose side `t` is on: itself, or the tet a ghost's triangle bounds).
+        // tet whose side `t` is on: itself, or the tet a ghost's triangle bounds). A tet
+        // not seen above is put in or out of the wedge at the positions the cut decided
+        // at: `at` (the pool at rest, new vertices included), or a deformed body's.
+        let frame_at: Option<Vec<DVec3>> = deformed.filter(|_| !turn.is_empty()).map(|p| {
+            let mut at = p[..nv].to_vec();
+            at.extend(origin_positions(p, &origins));
+            at.extend(copies.iter().map(|v| p[v.idx()]));
+            at
+        });
         let for_side = |t: Tet, side: Side, holder: &Tet, at: &[DVec3]| -> Tet {
+            let at = frame_at.as_deref().unwrap_or(at);
             t.map(|v| match copy_of.get(&v) {
                 Some(&c) if turn_groups.contains_key(&v) => {
                     let keep = keeps.get(&(v, *holder)).copied().unwrap_or_else(|| {
@@ -1309,14 +1318,6 @@ impl MtCutter {
             self.crack[v.idx()] = true;
             self.crack.push(true);
         }
-        // Where a turning tip's tets not seen above are put in or out of the wedge: at the
-        // positions the cut decided at (a deformed body's, new vertices placed there too).
-        let frame_at: Option<Vec<DVec3>> = deformed.filter(|_| !turn.is_empty()).map(|p| {
-            let mut at = p[..nv].to_vec();
-            at.extend(origin_positions(p, &origins));
-            at.extend(copies.iter().map(|v| p[v.idx()]));
-            at
-        });
         // Real tets: children in place of their parents, unsplit tets on the negative side
         // take copies. `touched` lists every real tet the cut changed or may have made a
         // crack face of.
@@ -1332,34 +1333,21 @@ impl MtCutter {
                     if classes[k].touches_cut() {
                         let side = unsplit_side(k);
                         keep(&open, parent.idx(), tets[k]);
-                        open.tets[parent.idx()] = for_side(
-                            tets[k],
-                            side,
-                            &tets[k],
-                            frame_at.as_deref().unwrap_or(&open.positions),
-                        );
+                        open.tets[parent.idx()] =
+                            for_side(tets[k], side, &tets[k], &open.positions);
                         touched.push(parent.0);
                     }
                 }
                 i => {
                     let ch = &children[i as usize];
                     keep(&open, parent.idx(), tets[k]);
-                    open.tets[parent.idx()] = for_side(
-                        ch.tets[0],
-                        ch.sides[0],
-                        &ch.tets[0],
-                        frame_at.as_deref().unwrap_or(&open.positions),
-                    );
+                    open.tets[parent.idx()] =
+                        for_side(ch.tets[0], ch.sides[0], &ch.tets[0], &open.positions);
                     touched.push(parent.0);
                     let (c, d) = (open.creator()[parent.idx()], open.destroyer()[parent.idx()]);
                     for j in 1..ch.len {
                         touched.push(open.tets.len() as u32);
-                        let child = for_side(
-                            ch.tets[j],
-                            ch.sides[j],
-                            &ch.tets[j],
-                            frame_at.as_deref().unwrap_or(&open.positions),
-                        );
+                        let child = for_side(ch.tets[j], ch.sides[j], &ch.tets[j], &open.positions);
                         open.push_tet(child, c, d);
                         appended_parents.push(parent.0);
                     }
@@ -1379,21 +1367,11 @@ impl MtCutter {
                 stats.ghosts_split += 1;
                 let (c, d) = (open.creator()[g], open.destroyer()[g]);
                 keep(&open, g, tet);
-                open.tets[g] = for_side(
-                    subs[0].0,
-                    subs[0].1,
-                    &subs[0].2,
-                    frame_at.as_deref().unwrap_or(&open.positions),
-                );
+                open.tets[g] = for_side(subs[0].0, subs[0].1, &subs[0].2, &open.positions);
                 ghost_touched.push(g as u32);
                 for &(t, side, holder) in &subs[1..] {
                     ghost_touched.push(open.tets.len() as u32);
-                    let sub = for_side(
-                        t,
-                        side,
-                        &holder,
-                        frame_at.as_deref().unwrap_or(&open.positions),
-                    );
+                    let sub = for_side(t, side, &holder, &open.positions);
                     open.push_tet(sub, c, d);
                     appended_parents.push(g as u32);
                 }
@@ -1403,12 +1381,7 @@ impl MtCutter {
                     .copied()
                     .unwrap_or((Side::Positive, tet));
                 keep(&open, g, tet);
-                open.tets[g] = for_side(
-                    tet,
-                    side,
-                    &holder,
-                    frame_at.as_deref().unwrap_or(&open.positions),
-                );
+                open.tets[g] = for_side(tet, side, &holder, &open.positions);
                 ghost_touched.push(g as u32);
             }
         }
