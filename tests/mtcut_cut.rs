@@ -329,7 +329,7 @@ fn a_cut_leaving_a_fragment_with_a_face_twice_is_refused() {
 /// moved.
 #[test]
 fn a_cut_close_to_an_earlier_cracks_plane_is_made_in_that_plane() {
-    use mtcut::geom::{Aabb, DVec3};
+    use mtcut::geom::Aabb;
     for name in mt_common::MESHES {
         let mt = &mt_common::built(name).1;
         let volumes = extreme_volumes(mt);
@@ -355,11 +355,8 @@ fn a_cut_close_to_an_earlier_cracks_plane_is_made_in_that_plane() {
             assert_eq!(stats.moved_to_plane, moved, "{case}");
             // The polygon the MT was cut by: the given one, projected onto the first's
             // plane when moved.
-            let plane = first.plane();
-            let onto = |p: DVec3| p - plane.normal * plane.normal.dot(p - plane.points[0]);
-            let corners: Vec<DVec3> = given.points().iter().map(|&p| onto(p)).collect();
             polygons.push(if moved {
-                CutPolygon::new(&corners).expect("projected")
+                projected_onto(&given, &first)
             } else {
                 given
             });
@@ -429,10 +426,7 @@ fn a_cut_close_to_an_older_cracks_plane_is_made_in_it_after_other_cuts() {
                 .cut(&given)
                 .unwrap_or_else(|e| panic!("{case}: second band refused: {e}"));
             assert!(stats.moved_to_plane, "{case}");
-            let plane = first.plane();
-            let onto = |p: DVec3| p - plane.normal * plane.normal.dot(p - plane.points[0]);
-            let corners: Vec<DVec3> = given.points().iter().map(|&p| onto(p)).collect();
-            polygons.push(CutPolygon::new(&corners).expect("projected"));
+            polygons.push(projected_onto(&given, &first));
             let req = requests(c.mt(), 10, 2, &mut rng);
             check_after_cut(&c, volumes, &polygons, &req).unwrap_or_else(|m| panic!("{case}: {m}"));
         }

@@ -221,3 +221,15 @@ pub fn nearly_coplanar_bands(c: DVec3, d: f64, offset: f64, tilt: f64) -> [CutPo
         band(o + n * (offset * d), tilted, -0.05 * d, 0.2 * d),
     ]
 }
+
+/// `polygon` with its corners projected onto the plane of `onto`: the polygon a cut moved
+/// onto an earlier crack's plane was made by.
+pub fn projected_onto(polygon: &CutPolygon, onto: &CutPolygon) -> CutPolygon {
+    let plane = onto.plane();
+    let corners: Vec<DVec3> = polygon
+        .points()
+        .iter()
+        .map(|&p| p - plane.normal * plane.normal.dot(p - plane.points[0]))
+        .collect();
+    CutPolygon::new(&corners).expect("projected polygon")
+}
