@@ -87,7 +87,16 @@
 //!   frame); bent 2 % more at every step, one step is refused (pinion's) but the body
 //!   stays in one piece on the three meshes, joined through faces (likely where two
 //!   steps' cracks fail to meet: the motion moves the last crack's end off the line the
-//!   next step begins on, and nothing glues it for a step at an angle; not examined).
+//!   next step begins on, and nothing glues it for a step at an angle). A host that sets
+//!   the positions before every step, as a simulation does, gives the MT a new frame
+//!   each time even with the same bend: its positions of the vertices the last cut made
+//!   replace those the cut interpolated, and the pool vertices not in the current mesh
+//!   are placed through them. Then 3, 4 and 4 steps are refused (the steps' cracks meet
+//!   without the turning tips' decisions, leaving faces doubled in a fragment), as before
+//!   cuts were recorded with their frame. Tried: mapping the last cut's polygon into the
+//!   new frame by an affine fit of the placed pool, and the step's start with it, so the
+//!   MT continues it at an angle across frames: the growing bend then had 3, 4 and 3
+//!   steps refused (the MT's checks: a coarsest mesh pinched, faces doubled).
 //! * A cut given close to the plane of an earlier cut of the model without lying in it
 //!   (within [`PLANE_SNAP`] of the model's size, a blade re-entering an incision) is made
 //!   in that plane, on the current mesh and on the MT alike ([`LiveCut::moved_to_plane`];
