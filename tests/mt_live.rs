@@ -592,9 +592,7 @@ fn a_blade_turning_across_a_bent_body_takes_every_step() {
     let d = diag(l.mesh());
     let rest = l.rest_positions().to_vec();
     l.set_positions(&bend(&rest, 0.005, d)).expect("bend");
-    let path: Vec<_> = (0..16)
-        .map(|k| blades::on_arc(&b, -8.0 + 8.0 * k as f64))
-        .collect();
+    let path = blades::turning_by_8(&b, 15);
     for (k, w) in path.windows(2).enumerate() {
         for p in scalpel_sweep(w[0], w[1], SWEEP_PLANARITY).expect("sweep") {
             let case = format!("step {k}");
@@ -633,9 +631,7 @@ fn a_blade_turning_across_a_body_moved_between_steps_separates_it() {
             let mut l = scalpel_live(name);
             let b = mtcut::geom::Aabb::from_points(l.mt().positions());
             let d = diag(l.mesh());
-            let path: Vec<_> = (0..16)
-                .map(|k| blades::on_arc(&b, -8.0 + 8.0 * k as f64))
-                .collect();
+            let path = blades::turning_by_8(&b, 15);
             for (k, w) in path.windows(2).enumerate() {
                 let rest = l.rest_positions().to_vec();
                 // Refused when it would invert a sliver the cuts made (pinion's growing

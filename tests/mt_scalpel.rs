@@ -125,7 +125,7 @@ fn a_scalpel_resumed_from_saved_models_cuts_as_one_cutter() {
         let b = Aabb::from_points(mt.positions());
         let mut one = MtCutter::new(mt.clone(), MtCutter::DEFAULT_OPTIONS).expect("options");
         let mut saved = mt.to_bytes();
-        let path: Vec<Blade> = (0..16).map(|k| on_arc(&b, -8.0 + 8.0 * k as f64)).collect();
+        let path = blades::turning_by_8(&b, 15);
         for (k, w) in path.windows(2).enumerate() {
             for polygon in scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).expect("sweep") {
                 let loaded = mtcut::mt::Mt::from_bytes(&saved).expect("load");

@@ -25,6 +25,14 @@ pub fn on_arc(b: &Aabb, deg: f64) -> Blade {
     vertical(b, p.x, p.y)
 }
 
+/// The blade of [`on_arc`] turning by 8° per step from -8°: `steps` sweeps, `steps + 1`
+/// positions.
+pub fn turning_by_8(b: &Aabb, steps: usize) -> Vec<Blade> {
+    (0..=steps)
+        .map(|k| on_arc(b, -8.0 + 8.0 * k as f64))
+        .collect()
+}
+
 /// A blade cutting from above the body down to mid-depth, moved along `from`→`to` in steps.
 pub fn shallow_path(b: &Aabb, from: (f64, f64), to: (f64, f64), steps: usize) -> Vec<Blade> {
     let d = b.max - b.min;
