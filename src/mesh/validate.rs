@@ -348,38 +348,24 @@ fn check_manifold(n_vertices: usize, boundary: &[[VertexId; 3]], r: &mut Validat
 }
 
 /// A boundary vertex lying strictly inside a boundary face or edge it does not belong to is
-/// a T-junction: the mesh is not conforming there. Exact predicates decide; a uniform grid
-/// keeps it linear. The boundary vertices, sorted by grid cell, are small enough to stay
-/// in cache; each face (in parallel) looks up the vertices of the cells its box covers.
+/// a T-junction: the mesh is not conforming there. Exact predicates decide; a k-d tree over
+/// the boundary vertices finds those in each face's box (in parallel over faces) in time
+/// that follows the vertices found, however unevenly they are spread — a cut's crack
+/// packs many small faces into a small region, where a uniform grid's cells overflow.
 fn check_hanging(pos: &[DVec3], boundary: &[[VertexId; 3]], r: &mut ValidationReport) {
     if boundary.is_empty() {
         return;
     }
-    let bbox = Aabb::from_points(boundary.iter().flatten().map(|v| &pos[v.idx()]));
-    let total_len: f64 = boundary
-        .iter()
-        .map(|f| (pos[f[0].idx()] - pos[f[1].idx()]).length())
-        .sum();
-    let cell = (total_len / boundary.len() as f64).max(bbox.diagonal() / 1024.0);
-    if cell.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-        return;
-    }
-    let dims = ((bbox.extent() / cell).floor().as_uvec3() + 1).min(glam::UVec3::splat(1024));
-    let index =
-        |p: DVec3| -> glam::UVec3 { ((p - bbox.min) / cell).floor().as_uvec3().min(dims - 1) };
-    let flat =
-        |c: glam::UVec3| c.x as u64 + dims.x as u64 * (c.y as u64 + dims.y as u64 * c.z as u64);
     let mut on_boundary = vec![false; pos.len()];
     for v in boundary.iter().flatten() {
         on_boundary[v.idx()] = true;
     }
-    // (cell, vertex), sorted; cells alone in a second array for the searches.
-    let mut vertices: Vec<(u64, VertexId)> = (0..pos.len())
-        .filter(|&v| on_boundary[v])
-        .map(|v| (flat(index(pos[v])), VertexId::from_usize(v)))
-        .collect();
-    vertices.par_sort_unstable();
-    let cells: Vec<u64> = vertices.iter().map(|c| c.0).collect();
+    let tree = PointTree::new(
+        (0..pos.len())
+            .filter(|&v| on_boundary[v])
+            .map(|v| (pos[v], VertexId::from_usize(v)))
+            .collect(),
+    );
     // (vertex, face) for every vertex lying on a face it is not part of.
     let mut hits: Vec<(VertexId, u32)> = boundary
         .par_iter()
@@ -387,37 +373,22 @@ fn check_hanging(pos: &[DVec3], boundary: &[[VertexId; 3]], r: &mut ValidationRe
         .flat_map_iter(|(fi, f)| {
             let [a, b, q] = f.map(|w| pos[w.idx()]);
             let fb = Aabb::from_points([a, b, q].iter());
-            let (lo, hi) = (index(fb.min), index(fb.max));
             let mut found = Vec::new();
-            for z in lo.z..=hi.z {
-                for y in lo.y..=hi.y {
-                    // Cells of one row are consecutive in the flat order.
-                    let first = flat(glam::UVec3::new(lo.x, y, z));
-                    let last = flat(glam::UVec3::new(hi.x, y, z));
-                    let start = cells.partition_point(|&c| c < first);
-                    for &(c, v) in &vertices[start..] {
-                        if c > last {
-                            break;
-                        }
-                        let p = pos[v.idx()];
-                        // Cheapest exact tests first. On flat CAD boundaries many
-                        // candidates are coplanar with the face, where orient3d is exactly
-                        // zero and takes its slow exact path; the box and the projected-
-                        // triangle tests (a point in the triangle projects into its
-                        // projection) reject them before.
-                        if !f.contains(&v)
-                            && fb.contains(p)
-                            && p != a
-                            && p != b
-                            && p != q
-                            && point_in_coplanar_triangle(p, a, b, q)
-                            && orient3d(a, b, q, p) == Sign::Zero
-                        {
-                            found.push((v, fi as u32));
-                        }
-                    }
+            tree.visit_in(&fb, |p, v| {
+                // Cheapest exact tests first. On flat CAD boundaries many candidates are
+                // coplanar with the face, where orient3d is exactly zero and takes its slow
+                // exact path; the projected-triangle test (a point in the triangle
+                // projects into its projection) rejects them before.
+                if !f.contains(&v)
+                    && p != a
+                    && p != b
+                    && p != q
+                    && point_in_coplanar_triangle(p, a, b, q)
+                    && orient3d(a, b, q, p) == Sign::Zero
+                {
+                    found.push((v, fi as u32));
                 }
-            }
+            });
             found
         })
         .collect();
@@ -431,6 +402,74 @@ fn check_hanging(pos: &[DVec3], boundary: &[[VertexId; 3]], r: &mut ValidationRe
                 vertex_list(&boundary[fi as usize])
             )
         });
+    }
+}
+
+/// A static k-d tree over points: halved at the median of the longest side of each
+/// node's box down to leaves of at most [`PointTree::LEAF`] points, nodes numbered as in a
+/// heap (the children of `n` are `2n + 1` and `2n + 2`).
+struct PointTree {
+    points: Vec<(DVec3, VertexId)>,
+    boxes: Vec<Aabb>,
+}
+
+impl PointTree {
+    const LEAF: usize = 8;
+
+    fn new(mut points: Vec<(DVec3, VertexId)>) -> PointTree {
+        let leaves = points.len().div_ceil(Self::LEAF).max(1);
+        let mut boxes = vec![Aabb::EMPTY; 2 * leaves.next_power_of_two()];
+        Self::build(&mut points, 0, &mut boxes);
+        PointTree { points, boxes }
+    }
+
+    fn build(points: &mut [(DVec3, VertexId)], node: usize, boxes: &mut [Aabb]) {
+        let b = Aabb::from_points(points.iter().map(|(p, _)| p));
+        boxes[node] = b;
+        if points.len() <= Self::LEAF {
+            return;
+        }
+        let e = b.extent();
+        let axis = if e.x >= e.y && e.x >= e.z {
+            0
+        } else if e.y >= e.z {
+            1
+        } else {
+            2
+        };
+        let mid = points.len() / 2;
+        points.select_nth_unstable_by(mid, |p, q| p.0[axis].total_cmp(&q.0[axis]));
+        let (left, right) = points.split_at_mut(mid);
+        Self::build(left, 2 * node + 1, boxes);
+        Self::build(right, 2 * node + 2, boxes);
+    }
+
+    /// Calls `f` on every point in the closed box `b`.
+    fn visit_in(&self, b: &Aabb, mut f: impl FnMut(DVec3, VertexId)) {
+        // Depth-first with a fixed stack: a node's size halves at each level, so the depth
+        // is at most 64 and a stack entry waits per level.
+        let mut stack = [(0usize, 0usize, 0usize); 64];
+        stack[0] = (0, 0, self.points.len());
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (node, lo, hi) = stack[top];
+            if !self.boxes[node].intersects(b) {
+                continue;
+            }
+            if hi - lo <= Self::LEAF {
+                for &(p, v) in &self.points[lo..hi] {
+                    if b.contains(p) {
+                        f(p, v);
+                    }
+                }
+            } else {
+                let mid = lo + (hi - lo) / 2;
+                stack[top] = (2 * node + 2, mid, hi);
+                stack[top + 1] = (2 * node + 1, lo, mid);
+                top += 2;
+            }
+        }
     }
 }
 
@@ -495,6 +534,43 @@ mod tests {
                 assert!(r.count(ViolationKind::HangingVertex) >= 1, "{r}")
             }
             e => panic!("unexpected {e}"),
+        }
+    }
+
+    /// The k-d tree finds exactly the points in a box, ties on the box's faces included,
+    /// on clustered points with repeated coordinates.
+    #[test]
+    fn point_tree_finds_the_points_in_a_box() {
+        let mut seed = 3u64;
+        let mut unit = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 40) % 17) as f64 / 16.0
+        };
+        let points: Vec<(DVec3, VertexId)> = (0..500)
+            .map(|i| {
+                let scale = if i % 3 == 0 { 0.05 } else { 1.0 };
+                let p = DVec3::new(unit(), unit(), unit()) * scale;
+                (p, VertexId::from_usize(i))
+            })
+            .collect();
+        let tree = PointTree::new(points.clone());
+        for _ in 0..300 {
+            let (a, b) = (
+                DVec3::new(unit(), unit(), unit()),
+                DVec3::new(unit(), unit(), unit()),
+            );
+            let b = Aabb::from_points([a * 0.3, b * 0.3].iter());
+            let mut got = Vec::new();
+            tree.visit_in(&b, |_, v| got.push(v));
+            got.sort_unstable();
+            let expected: Vec<VertexId> = points
+                .iter()
+                .filter(|(p, _)| b.contains(*p))
+                .map(|&(_, v)| v)
+                .collect();
+            assert_eq!(got, expected);
         }
     }
 

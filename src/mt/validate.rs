@@ -17,8 +17,9 @@
 use super::extract::ExtractOptions;
 use super::{FragmentKind, GHOST, Mt};
 use crate::geom::{Aabb, Sign, orient3d};
-use crate::mesh::tables::{TET_FACES, flip_face, oriented_face};
+use crate::mesh::tables::{TET_FACES, oriented_face};
 use crate::mesh::{FragmentId, Tet, TetId};
+use rayon::prelude::*;
 use std::fmt;
 
 const EXAMPLES: usize = 5;
@@ -111,32 +112,79 @@ impl fmt::Display for MtViolation {
     }
 }
 
+/// An oriented triangle as one sortable key: its vertices in increasing order, then one bit
+/// for the orientation (0 when `oriented_face` gives them in that order). The two
+/// orientations of a triangle sort next to each other, so one sort pairs every face with
+/// its opposite (no search), and sorting one integer is faster than sorting triples.
+fn face_key(t: Tet, f: [usize; 3]) -> u128 {
+    let [a, b, c] = oriented_face(t[f[0]].0, t[f[1]].0, t[f[2]].0);
+    let (lo, hi, flipped) = if b < c { (b, c, 0) } else { (c, b, 1) };
+    (u128::from(a) << 65) | (u128::from(lo) << 33) | (u128::from(hi) << 1) | flipped
+}
+
 /// The outward faces of `tets` that are not matched by an opposite face of another of
-/// them (the boundary), sorted; and the number of faces met twice with one orientation.
-fn boundary_of(tets: impl Iterator<Item = Tet>, buf: &mut Vec<[u32; 3]>) -> (Vec<[u32; 3]>, usize) {
+/// them (the boundary, as sorted [`face_key`]s), and the number of faces met twice with
+/// one orientation.
+fn boundary_of(tets: impl Iterator<Item = Tet>, buf: &mut Vec<u128>) -> (Vec<u128>, usize) {
     buf.clear();
     for t in tets {
-        for f in TET_FACES {
-            buf.push(oriented_face(t[f[0]].0, t[f[1]].0, t[f[2]].0));
-        }
+        buf.extend(TET_FACES.map(|f| face_key(t, f)));
     }
     buf.sort_unstable();
     let mut same = 0;
-    for w in buf.windows(2) {
-        if w[0] == w[1] {
-            same += 1;
-        }
-    }
     let mut out = Vec::new();
-    for &f in buf.iter() {
-        if buf.binary_search(&flip_face(f)).is_err() {
-            out.push(f);
+    // Runs of one triangle: a face is on the boundary when its opposite is absent.
+    let mut i = 0;
+    while i < buf.len() {
+        let tri = buf[i] >> 1;
+        let end = i + buf[i..].iter().take_while(|&&k| k >> 1 == tri).count();
+        let run = &buf[i..end];
+        same += run.windows(2).filter(|w| w[0] == w[1]).count();
+        if run.first().map(|k| k & 1) == run.last().map(|k| k & 1) {
+            out.extend_from_slice(run);
         }
+        i = end;
     }
     (out, same)
 }
 
+/// What [`Mt::validate`] found in one fragment's floor and ceiling.
+struct FragmentCheck {
+    /// Faces met twice with one orientation, in the floor and in the ceiling.
+    doubled: (usize, usize),
+    /// Boundary triangles of the floor and of the ceiling.
+    boundaries: (usize, usize),
+    boundary_differs: bool,
+    bbox_differs: bool,
+}
+
+impl FragmentCheck {
+    fn is_ok(&self) -> bool {
+        self.doubled == (0, 0) && !self.boundary_differs && !self.bbox_differs
+    }
+}
+
 impl Mt {
+    /// Fragment `f`'s floor and ceiling: each conforming, the same boundary, and the
+    /// fragment's box theirs. `buf` is scratch space.
+    fn check_fragment(&self, f: usize, buf: &mut Vec<u128>) -> FragmentCheck {
+        let fid = FragmentId::from_usize(f);
+        let (floor_b, floor_same) = boundary_of(self.destroyed_tets(fid).map(|t| self.tet(t)), buf);
+        let (ceil_b, ceil_same) = boundary_of(self.created_tets(fid).map(|t| self.tet(t)), buf);
+        let mut b = Aabb::EMPTY;
+        for t in self.destroyed_tets(fid).chain(self.created_tets(fid)) {
+            for v in self.tet(t).iter().filter(|v| **v != GHOST) {
+                b.grow(self.positions[v.idx()]);
+            }
+        }
+        FragmentCheck {
+            doubled: (floor_same, ceil_same),
+            boundaries: (floor_b.len(), ceil_b.len()),
+            boundary_differs: floor_b != ceil_b,
+            bbox_differs: self.frame.enclose(&b) != self.bbox[f],
+        }
+    }
+
     /// Checks every invariant (see the [module docs](self)); tests call it after every
     /// operation. Exhaustive: linear-logarithmic in the pool size, plus two extractions.
     pub fn validate(&self) -> MtValidationReport {
@@ -278,29 +326,40 @@ impl Mt {
                 });
             }
         }
-        // Geometry of every tet of every level.
-        for (t, tet) in self.tets.iter().enumerate() {
-            if tet[3] == GHOST {
-                continue;
-            }
-            let [a, b, c, d] = tet.map(|v| self.positions[v.idx()]);
-            if orient3d(a, b, c, d) != Sign::Positive {
-                r.add(MtViolationKind::TetOrientation, || {
-                    format!(
-                        "tet {t} {tet:?} (creator {})",
-                        self.tet_creator(TetId::from_usize(t))
-                    )
-                });
-            }
+        // Geometry of every tet of every level, and the floor and ceiling of every
+        // fragment: on all cores (the pool has millions of tets after a few cuts), the
+        // findings gathered in id order so the report is the same on one thread.
+        let inverted: Vec<usize> = (0..self.tets.len())
+            .into_par_iter()
+            .filter(|&t| {
+                let tet = self.tets[t];
+                tet[3] != GHOST && {
+                    let [a, b, c, d] = tet.map(|v| self.positions[v.idx()]);
+                    orient3d(a, b, c, d) != Sign::Positive
+                }
+            })
+            .collect();
+        for t in inverted {
+            r.add(MtViolationKind::TetOrientation, || {
+                format!(
+                    "tet {t} {:?} (creator {})",
+                    self.tets[t],
+                    self.tet_creator(TetId::from_usize(t))
+                )
+            });
         }
-        // Floor and ceiling of every fragment.
-        let mut buf = Vec::new();
-        for f in 0..nf {
-            let fid = FragmentId::from_usize(f);
-            let (floor_b, floor_same) =
-                boundary_of(self.destroyed_tets(fid).map(|t| self.tet(t)), &mut buf);
-            let (ceil_b, ceil_same) =
-                boundary_of(self.created_tets(fid).map(|t| self.tet(t)), &mut buf);
+        let fragments: Vec<(usize, FragmentCheck)> = (0..nf)
+            .into_par_iter()
+            .map_init(Vec::new, |buf, f| (f, self.check_fragment(f, buf)))
+            .filter(|(_, c)| !c.is_ok())
+            .collect();
+        for (f, c) in fragments {
+            let FragmentCheck {
+                doubled: (floor_same, ceil_same),
+                boundaries: (floor_len, ceil_len),
+                boundary_differs,
+                bbox_differs,
+            } = c;
             if floor_same + ceil_same > 0 {
                 r.add(MtViolationKind::FragmentNotConforming, || {
                     format!(
@@ -308,23 +367,16 @@ impl Mt {
                     )
                 });
             }
-            if floor_b != ceil_b {
+            if boundary_differs {
                 r.add(MtViolationKind::FragmentBoundary, || {
                     format!(
-                        "{:?} fragment {f}: floor boundary has {} triangles, ceiling {}",
+                        "{:?} fragment {f}: floor boundary has {floor_len} triangles, \
+                         ceiling {ceil_len}",
                         self.kind[f],
-                        floor_b.len(),
-                        ceil_b.len()
                     )
                 });
             }
-            let mut b = Aabb::EMPTY;
-            for t in self.destroyed_tets(fid).chain(self.created_tets(fid)) {
-                for v in self.tet(t).iter().filter(|v| **v != GHOST) {
-                    b.grow(self.positions[v.idx()]);
-                }
-            }
-            if self.frame.enclose(&b) != self.bbox[f] {
+            if bbox_differs {
                 r.add(MtViolationKind::BboxMismatch, || format!("fragment {f}"));
             }
         }
@@ -344,5 +396,62 @@ impl Mt {
             }
         }
         r
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::VertexId;
+    use crate::mesh::tables::flip_face;
+
+    /// The oriented face a [`face_key`] stands for.
+    fn face_of(k: u128) -> [u32; 3] {
+        let (a, lo, hi) = ((k >> 65) as u32, (k >> 33) as u32, (k >> 1) as u32);
+        if k & 1 == 0 { [a, lo, hi] } else { [a, hi, lo] }
+    }
+
+    /// `boundary_of` against the definition: every face (with its multiplicity) whose
+    /// opposite no tet has, and the faces met twice with one orientation; on random sets of
+    /// tets over a few vertices, so that shared, opposite and repeated faces all occur.
+    #[test]
+    fn boundary_of_follows_its_definition() {
+        let mut seed = 7u64;
+        let mut next = |n: u32| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) % u64::from(n)) as u32
+        };
+        let mut buf = Vec::new();
+        for case in 0..2000 {
+            let count = 1 + next(8) as usize;
+            let tets: Vec<Tet> = (0..count)
+                .map(|_| {
+                    loop {
+                        let t = [next(6), next(6), next(6), next(6)];
+                        if (0..4).all(|i| (i + 1..4).all(|j| t[i] != t[j])) {
+                            break t.map(VertexId);
+                        }
+                    }
+                })
+                .collect();
+            let mut faces: Vec<[u32; 3]> = tets
+                .iter()
+                .flat_map(|t| TET_FACES.map(|f| oriented_face(t[f[0]].0, t[f[1]].0, t[f[2]].0)))
+                .collect();
+            faces.sort_unstable();
+            let same = faces.windows(2).filter(|w| w[0] == w[1]).count();
+            let mut expected: Vec<[u32; 3]> = faces
+                .iter()
+                .copied()
+                .filter(|f| faces.binary_search(&flip_face(*f)).is_err())
+                .collect();
+            expected.sort_unstable();
+            let (out, got_same) = boundary_of(tets.iter().copied(), &mut buf);
+            let mut got: Vec<[u32; 3]> = out.into_iter().map(face_of).collect();
+            got.sort_unstable();
+            assert_eq!((got, got_same), (expected, same), "case {case}: {tets:?}");
+        }
     }
 }

@@ -2,10 +2,11 @@
 #![allow(dead_code)]
 
 use mtcut::cut::MtCutter;
-use mtcut::geom::{CutPolygon, DVec3, Sign};
+use mtcut::geom::{Aabb, CutPolygon, DVec3, Sign};
 use mtcut::mesh::TetMesh;
 use mtcut::mesh::tables::TET_EDGES;
 use mtcut::mt::{ExtractOptions, Mt, Region};
+use rayon::prelude::*;
 
 /// SplitMix64 (seeded, reproducible).
 pub struct Rng(pub u64);
@@ -80,58 +81,79 @@ const TIP_REACH: f64 = 1.5 * mtcut::cut::MIN_FACE_POINT_MARGIN;
 pub fn crossing(
     mesh: &TetMesh,
     polygons: &[CutPolygon],
-    near: impl Fn(usize, &CutPolygon) -> bool,
-    scale: impl Fn(usize) -> f64,
+    near: impl Fn(usize, &CutPolygon) -> bool + Sync,
+    scale: impl Fn(usize) -> f64 + Sync,
 ) -> Option<String> {
     let pos = mesh.positions();
     let last = polygons.len().saturating_sub(1);
-    for (k, polygon) in polygons.iter().enumerate() {
-        let side: Vec<Sign> = pos.iter().map(|p| polygon.side(*p)).collect();
-        for (t, tet) in mesh.tets().iter().enumerate() {
-            for [a, b] in TET_EDGES {
+    // Each edge once (a mesh's edges are shared by about five tets each), with the first
+    // tet holding it, for the message.
+    let mut edges: Vec<(usize, usize, usize)> = mesh
+        .tets()
+        .iter()
+        .enumerate()
+        .flat_map(|(t, tet)| {
+            TET_EDGES.map(|[a, b]| {
                 let (u, w) = (tet[a].idx(), tet[b].idx());
-                if side[u] == Sign::Zero
-                    || side[w] == Sign::Zero
-                    || side[u] == side[w]
-                    || !polygon.segment_crosses_inside(pos[u], pos[w])
-                    || near(u, polygon)
-                    || near(w, polygon)
-                {
-                    continue;
-                }
-                let (du, dw) = (
-                    polygon.signed_distance(pos[u]),
-                    polygon.signed_distance(pos[w]),
-                );
-                let x = pos[u] + (pos[w] - pos[u]) * (du / (du - dw));
-                // Distance of the crossing from C's contour (C is convex).
-                let band = polygon.inside_margin(x);
-                if k < last && band <= 2.0 * scale(u).max(scale(w)) {
-                    continue;
-                }
-                // A crack tip of an earlier step that this one continues at an angle is
-                // taken onto the cut within the tip reach of C's contour, off the plane
-                // (`mt_cut`'s `TurnTips`): the crack bends through it, so an edge from it
-                // may cross the plane near it (farther along an edge almost in the plane)
-                // without crossing the crack.
-                let bent = |v: usize, d: f64| {
-                    let reach = TIP_REACH * scale(v);
-                    d.abs() <= reach
-                        && polygon.inside_margin(pos[v]) <= reach
-                        && polygon.projection_distance(pos[v]) <= reach
-                };
-                if bent(u, du) || bent(w, dw) {
-                    continue;
-                }
-                return Some(format!(
-                    "polygon {k}: edge {u}-{w} of tet {t} crosses it inside ({:?} - {:?}, \
-                     distances {du:e} {dw:e}, {band:e} inside C's contour)",
-                    pos[u], pos[w],
-                ));
+                (u.min(w), u.max(w), t)
+            })
+        })
+        .collect();
+    edges.par_sort_unstable();
+    edges.dedup_by_key(|&mut (u, w, _)| (u, w));
+    // The polygons on all cores; the first failure in polygon order is reported.
+    (0..polygons.len()).into_par_iter().find_map_first(|k| {
+        let polygon = &polygons[k];
+        let side: Vec<Sign> = pos
+            .iter()
+            .map(|&p| polygon.side_filtered(p, polygon.signed_distance(p)))
+            .collect();
+        // An edge crossing C has a point of C, so its box meets C's box (exact: the boxes
+        // hold the coordinates themselves).
+        let cbox = Aabb::from_points(polygon.points());
+        for &(u, w, t) in &edges {
+            if side[u] == Sign::Zero
+                || side[w] == Sign::Zero
+                || side[u] == side[w]
+                || !cbox.intersects(&Aabb::from_points([&pos[u], &pos[w]]))
+                || near(u, polygon)
+                || near(w, polygon)
+                || !polygon.segment_crosses_inside(pos[u], pos[w])
+            {
+                continue;
             }
+            let (du, dw) = (
+                polygon.signed_distance(pos[u]),
+                polygon.signed_distance(pos[w]),
+            );
+            let x = pos[u] + (pos[w] - pos[u]) * (du / (du - dw));
+            // Distance of the crossing from C's contour (C is convex).
+            let band = polygon.inside_margin(x);
+            if k < last && band <= 2.0 * scale(u).max(scale(w)) {
+                continue;
+            }
+            // A crack tip of an earlier step that this one continues at an angle is
+            // taken onto the cut within the tip reach of C's contour, off the plane
+            // (`mt_cut`'s `TurnTips`): the crack bends through it, so an edge from it
+            // may cross the plane near it (farther along an edge almost in the plane)
+            // without crossing the crack.
+            let bent = |v: usize, d: f64| {
+                let reach = TIP_REACH * scale(v);
+                d.abs() <= reach
+                    && polygon.inside_margin(pos[v]) <= reach
+                    && polygon.projection_distance(pos[v]) <= reach
+            };
+            if bent(u, du) || bent(w, dw) {
+                continue;
+            }
+            return Some(format!(
+                "polygon {k}: edge {u}-{w} of tet {t} crosses it inside ({:?} - {:?}, \
+                 distances {du:e} {dw:e}, {band:e} inside C's contour)",
+                pos[u], pos[w],
+            ));
         }
-    }
-    None
+        None
+    })
 }
 
 /// A valid mesh, or one whose only flaw is vertices of one part lying on the boundary of
