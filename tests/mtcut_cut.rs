@@ -121,7 +121,7 @@ fn every_kind_on_every_mesh_with_focus() {
 }
 
 #[test]
-#[ignore = "long (about 1-3 minutes each in release): scripts/test.sh runs them with --release"]
+#[ignore = "long (1-2 minutes each): scripts/test.sh runs them apart from the rest"]
 fn sequence_of_50_cuts_fandisk() {
     sequence("fandisk", 11, 5, 5);
 }

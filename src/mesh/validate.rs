@@ -372,8 +372,12 @@ fn check_hanging(pos: &[DVec3], boundary: &[[VertexId; 3]], r: &mut ValidationRe
         .enumerate()
         .flat_map_iter(|(fi, f)| {
             let [a, b, q] = f.map(|w| pos[w.idx()]);
-            let fb = Aabb::from_points([a, b, q].iter());
             let mut found = Vec::new();
+            // A face without area in its projection holds no point strictly.
+            let Some(projected) = ProjectedTriangle::new(a, b, q) else {
+                return found;
+            };
+            let fb = Aabb::from_points([a, b, q].iter());
             tree.visit_in(&fb, |p, v| {
                 // Cheapest exact tests first. On flat CAD boundaries many candidates are
                 // coplanar with the face, where orient3d is exactly zero and takes its slow
@@ -383,7 +387,7 @@ fn check_hanging(pos: &[DVec3], boundary: &[[VertexId; 3]], r: &mut ValidationRe
                     && p != a
                     && p != b
                     && p != q
-                    && point_in_coplanar_triangle(p, a, b, q)
+                    && projected.contains(p)
                     && orient3d(a, b, q, p) == Sign::Zero
                 {
                     found.push((v, fi as u32));
@@ -473,25 +477,47 @@ impl PointTree {
     }
 }
 
-/// Whether `p`, coplanar with the triangle (a, b, c), lies in the closed triangle. Exact:
-/// the test is made in the coordinate plane the triangle projects to without collapsing.
-fn point_in_coplanar_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> bool {
-    let n = (b - a).cross(c - a).abs();
-    let (i, j) = if n.x >= n.y && n.x >= n.z {
-        (1, 2)
-    } else if n.y >= n.z {
-        (2, 0)
-    } else {
-        (0, 1)
-    };
-    let pr = |q: DVec3| [q[i], q[j]];
-    let s = [
-        orient2d(pr(a), pr(b), pr(p)),
-        orient2d(pr(b), pr(c), pr(p)),
-        orient2d(pr(c), pr(a), pr(p)),
-    ];
-    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
-        && orient2d(pr(a), pr(b), pr(c)) != Sign::Zero
+/// A triangle projected onto the coordinate plane it projects to without collapsing, for
+/// exact point-in-triangle tests of points coplanar with it.
+struct ProjectedTriangle {
+    axes: (usize, usize),
+    corners: [[f64; 2]; 3],
+    /// The orientation of the projected triangle (never zero).
+    sign: Sign,
+}
+
+impl ProjectedTriangle {
+    /// None when the projection is degenerate (a triangle without area).
+    fn new(a: DVec3, b: DVec3, c: DVec3) -> Option<ProjectedTriangle> {
+        let n = (b - a).cross(c - a).abs();
+        let axes = if n.x >= n.y && n.x >= n.z {
+            (1, 2)
+        } else if n.y >= n.z {
+            (2, 0)
+        } else {
+            (0, 1)
+        };
+        let corners = [a, b, c].map(|q| [q[axes.0], q[axes.1]]);
+        let sign = orient2d(corners[0], corners[1], corners[2]);
+        (sign != Sign::Zero).then_some(ProjectedTriangle {
+            axes,
+            corners,
+            sign,
+        })
+    }
+
+    /// Whether `p`, coplanar with the triangle, lies in the closed triangle. Exact: it does
+    /// unless one of the three sub-triangles at `p` has the opposite orientation (their
+    /// determinants add up to the triangle's, so they cannot all be opposite); the first
+    /// one found decides, which for most points is the first or second.
+    fn contains(&self, p: DVec3) -> bool {
+        let q = [p[self.axes.0], p[self.axes.1]];
+        let [a, b, c] = self.corners;
+        let opposite = self.sign.flip();
+        orient2d(a, b, q) != opposite
+            && orient2d(b, c, q) != opposite
+            && orient2d(c, a, q) != opposite
+    }
 }
 
 #[cfg(test)]
@@ -535,6 +561,36 @@ mod tests {
             }
             e => panic!("unexpected {e}"),
         }
+    }
+
+    /// Points coplanar with a triangle, at exactly representable barycentric coordinates
+    /// (s, t) on small integer corners: in the closed triangle exactly when s ≥ 0, t ≥ 0
+    /// and s + t ≤ 1, edges and corners included.
+    #[test]
+    fn projected_triangle_contains_exactly_its_closed_points() {
+        let mut seed = 11u64;
+        let mut int = |n: i64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) as i64 % (2 * n + 1) - n) as f64
+        };
+        let mut checked = [0usize; 2];
+        for _ in 0..2000 {
+            let [a, b, c] = [0; 3].map(|_| DVec3::new(int(8), int(8), int(8)));
+            let Some(tri) = ProjectedTriangle::new(a, b, c) else {
+                assert_eq!((b - a).cross(c - a), DVec3::ZERO, "{a} {b} {c}");
+                continue;
+            };
+            for _ in 0..20 {
+                let (s, t) = (int(12) / 8.0, int(12) / 8.0);
+                let p = a + (b - a) * s + (c - a) * t;
+                let inside = s >= 0.0 && t >= 0.0 && s + t <= 1.0;
+                assert_eq!(tri.contains(p), inside, "{a} {b} {c}: s {s} t {t}");
+                checked[usize::from(inside)] += 1;
+            }
+        }
+        assert!(checked.iter().all(|&n| n > 1000), "{checked:?}");
     }
 
     /// The k-d tree finds exactly the points in a box, ties on the box's faces included,
