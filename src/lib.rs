@@ -39,3 +39,4 @@ pub mod geom;
 pub mod io;
 pub mod mesh;
 pub mod mt;
+mod rng;

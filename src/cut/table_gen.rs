@@ -61,6 +61,7 @@ use super::tables::{
     face_points, is_crossed, is_valid_config,
 };
 use crate::mesh::tables::{EDGE_OF_VERTICES, TET_EDGES, TET_FACES};
+use crate::rng::Rng;
 use std::collections::HashMap;
 use std::fmt::Write;
 
@@ -88,24 +89,6 @@ enum SecPt {
 #[derive(Clone, Debug)]
 struct Geometry {
     bary: [[f64; 4]; 20],
-}
-
-/// A deterministic generator (SplitMix64) so the tables are reproducible.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in the open interval (0, 1).
-    fn unit(&mut self) -> f64 {
-        ((self.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
 }
 
 /// Everything derived from a configuration.

@@ -523,6 +523,7 @@ impl ProjectedTriangle {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::Rng;
 
     fn cube_corner_mesh() -> (Vec<DVec3>, Vec<[u32; 4]>) {
         let p = vec![
@@ -568,13 +569,8 @@ mod tests {
     /// and s + t ≤ 1, edges and corners included.
     #[test]
     fn projected_triangle_contains_exactly_its_closed_points() {
-        let mut seed = 11u64;
-        let mut int = |n: i64| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 33) as i64 % (2 * n + 1) - n) as f64
-        };
+        let mut rng = Rng(11);
+        let mut int = |n: i64| (rng.below(2 * n as u64 + 1) as i64 - n) as f64;
         let mut checked = [0usize; 2];
         for _ in 0..2000 {
             let [a, b, c] = [0; 3].map(|_| DVec3::new(int(8), int(8), int(8)));
@@ -597,13 +593,8 @@ mod tests {
     /// on clustered points with repeated coordinates.
     #[test]
     fn point_tree_finds_the_points_in_a_box() {
-        let mut seed = 3u64;
-        let mut unit = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 40) % 17) as f64 / 16.0
-        };
+        let mut rng = Rng(3);
+        let mut unit = || rng.below(17) as f64 / 16.0;
         let points: Vec<(DVec3, VertexId)> = (0..500)
             .map(|i| {
                 let scale = if i % 3 == 0 { 0.05 } else { 1.0 };

@@ -404,6 +404,7 @@ mod tests {
     use super::*;
     use crate::mesh::VertexId;
     use crate::mesh::tables::flip_face;
+    use crate::rng::Rng;
 
     /// The oriented face a [`face_key`] stands for.
     fn face_of(k: u128) -> [u32; 3] {
@@ -416,13 +417,8 @@ mod tests {
     /// tets over a few vertices, so that shared, opposite and repeated faces all occur.
     #[test]
     fn boundary_of_follows_its_definition() {
-        let mut seed = 7u64;
-        let mut next = |n: u32| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 33) % u64::from(n)) as u32
-        };
+        let mut rng = Rng(7);
+        let mut next = |n: u32| rng.below(u64::from(n)) as u32;
         let mut buf = Vec::new();
         for case in 0..2000 {
             let count = 1 + next(8) as usize;
