@@ -169,14 +169,17 @@ impl Mt {
     /// fragment's box theirs. `buf` is scratch space.
     fn check_fragment(&self, f: usize, buf: &mut Vec<u128>) -> FragmentCheck {
         let fid = FragmentId::from_usize(f);
-        let (floor_b, floor_same) = boundary_of(self.destroyed_tets(fid).map(|t| self.tet(t)), buf);
-        let (ceil_b, ceil_same) = boundary_of(self.created_tets(fid).map(|t| self.tet(t)), buf);
+        // The box grows as the faces are listed: one pass over each side's tets.
         let mut b = Aabb::EMPTY;
-        for t in self.destroyed_tets(fid).chain(self.created_tets(fid)) {
-            for v in self.tet(t).iter().filter(|v| **v != GHOST) {
+        let mut grow = |t: &Tet| {
+            for v in t.iter().filter(|v| **v != GHOST) {
                 b.grow(self.positions[v.idx()]);
             }
-        }
+        };
+        let floor = self.destroyed_tets(fid).map(|t| self.tet(t));
+        let (floor_b, floor_same) = boundary_of(floor.inspect(&mut grow), buf);
+        let ceiling = self.created_tets(fid).map(|t| self.tet(t));
+        let (ceil_b, ceil_same) = boundary_of(ceiling.inspect(&mut grow), buf);
         FragmentCheck {
             doubled: (floor_same, ceil_same),
             boundaries: (floor_b.len(), ceil_b.len()),
