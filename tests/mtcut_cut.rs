@@ -83,7 +83,8 @@ fn every_kind(regions: usize) {
 /// 50 cuts in a row on each mesh, validated after every one; extractions (10 thresholds,
 /// `regions` focus regions) checked against every polygon so far after every `every`-th
 /// cut and the last (the full check after each of the 150 cuts runs in
-/// `sequences_full_check`, ignored: `cargo test --release --test mtcut_cut -- --ignored`).
+/// `sequences_full_check`, ignored: `cargo test --test mtcut_cut -- --ignored
+/// sequences_full_check`).
 fn sequence(name: &str, seed: u64, every: usize, regions: usize) {
     let mesh = cut_common::mesh(name);
     let volumes = extreme_volumes(&mt_common::built(name).1);
@@ -139,8 +140,8 @@ fn sequence_of_50_cuts_liver() {
 }
 
 #[test]
-#[ignore = "long (about 10 minutes in release): every extraction check, focus regions \
-            included, after each of 150 cuts"]
+#[ignore = "long (576 s in the test profile on two cores): every extraction check, focus \
+            regions included, after each of 150 cuts"]
 fn sequences_full_check() {
     for (k, name) in mt_common::MESHES.iter().enumerate() {
         sequence(name, 21 + k as u64, 1, 5);
