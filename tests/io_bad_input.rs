@@ -158,7 +158,7 @@ fn vtu_repeated_vertex_in_a_tet() {
         &[vec![0, 1, 2, 3], vec![1, 2, 2, 3]],
         &[10, 10],
     ));
-    assert_mentions(&m, &["bad.vtu", "cell 1", "vertex 2 more than once"]);
+    assert_mentions(&m, &["bad.vtu", "cell 1 uses point 2 more than once"]);
 }
 
 #[test]
@@ -304,9 +304,7 @@ fn tetgen_bad_input_classes() {
         &m,
         &[
             "bad.ele",
-            "line 3",
-            "tetrahedron 1",
-            "vertex 1 more than once",
+            "line 3: tetrahedron 1 uses node 1 more than once",
         ],
     );
     // Face shared by three tets.
@@ -376,7 +374,10 @@ fn medit_bad_input_classes() {
     let m = medit_err(&medit_text(&POINTS, &[[0, 1, 2, 3], [1, 3, 4, 3]], ""));
     assert_mentions(
         &m,
-        &["bad.mesh", "line 13", "tetrahedron 2", "more than once"],
+        &[
+            "bad.mesh",
+            "line 13: tetrahedron 2 uses vertex 4 more than once",
+        ],
     );
     // Face shared by three tets.
     let m = medit_err(&medit_text(&FAN_POINTS, &FAN_TETS, ""));
@@ -449,4 +450,88 @@ fn vtu_bad_base64_and_wrong_sizes() {
     );
     let e = vtu_err(&ascii);
     assert_mentions(&e, &["DataArray 'types'", "2 values, expected 3"]);
+}
+
+// ---- numbering -----------------------------------------------------------------
+
+/// Two tets sharing only a vertex (0): a boundary pinched there.
+const BOWTIE_POINTS: [[f64; 3]; 7] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [0.0, 0.0, 1.0],
+    [-1.0, 0.0, 0.0],
+    [0.0, -1.0, 0.0],
+    [0.0, 0.0, -1.0],
+];
+const BOWTIE_TETS: [[i64; 4]; 2] = [[0, 1, 2, 3], [0, 4, 6, 5]];
+
+/// A file numbering its nodes and tetrahedra from 1 (as TetGen may, and medit always
+/// does) gets messages in its own numbers, not the mesh's ids from 0.
+#[test]
+fn messages_number_as_the_file_does() {
+    let from_one = |points: &[[f64; 3]], tets: &[[i64; 4]], first_tet: i64| {
+        let mut node = format!("{} 3 0 0\n", points.len());
+        for (i, p) in points.iter().enumerate() {
+            node += &format!("{} {} {} {}\n", i + 1, p[0], p[1], p[2]);
+        }
+        let mut ele = format!("{} 4 0\n", tets.len());
+        for (i, t) in tets.iter().enumerate() {
+            let [a, b, c, d] = t.map(|v| v + 1);
+            ele += &format!("{} {a} {b} {c} {d}\n", first_tet + i as i64);
+        }
+        (node, ele)
+    };
+    // Repeated node 5 (id 4) in the second tetrahedron.
+    let (node, ele) = from_one(&BOWTIE_POINTS, &[[0, 1, 2, 3], [4, 4, 6, 5]], 1);
+    let m = tetgen_err(&node, &ele);
+    assert_mentions(
+        &m,
+        &[
+            "bad.ele",
+            "line 3: tetrahedron 2 uses node 5 more than once",
+        ],
+    );
+    // A flat second tetrahedron.
+    let mut flat = BOWTIE_POINTS;
+    flat[6] = [-1.0, -1.0, 0.0];
+    let (node, ele) = from_one(&flat, &BOWTIE_TETS, 1);
+    let m = tetgen_err(&node, &ele);
+    assert_mentions(
+        &m,
+        &[
+            "line 3: tetrahedron 2 is degenerate",
+            "four nodes are coplanar",
+        ],
+    );
+    // The bow tie: the pinched vertex is node 1, the report's tets numbered from 1 too.
+    let (node, ele) = from_one(&BOWTIE_POINTS, &BOWTIE_TETS, 1);
+    let m = tetgen_err(&node, &ele);
+    assert_mentions(
+        &m,
+        &[
+            "vertex 1 joins 2 separate boundary fans",
+            "numbered as in the file (vertices are its nodes, tets its tetrahedra)",
+        ],
+    );
+    // Tetrahedra numbered out of sequence: the report says how it numbers them.
+    let (node, mut ele) = from_one(&BOWTIE_POINTS, &BOWTIE_TETS, 1);
+    ele = ele.replacen("\n2 ", "\n7 ", 1);
+    let m = tetgen_err(&node, &ele);
+    assert_mentions(
+        &m,
+        &["vertex 1 joins", "by their order in the .ele file from 0"],
+    );
+    // The same bow tie from medit (numbered from 1) and .vtu (from 0).
+    let m = medit_err(&medit_text(&BOWTIE_POINTS, &BOWTIE_TETS, ""));
+    assert_mentions(&m, &["bad.mesh", "vertex 1 joins 2 separate boundary fans"]);
+    let cells = tets_of(&BOWTIE_TETS);
+    let m = vtu_err(&vtu_text(&text_points(&BOWTIE_POINTS), &cells, &[10, 10]));
+    assert_mentions(
+        &m,
+        &[
+            "vertex 0 joins 2 separate boundary fans",
+            "vertices are its points, tets its cells",
+        ],
+    );
 }

@@ -8,9 +8,9 @@
 //! data `medit:ref`. Other volume elements (hexahedra, prisms, pyramids, quadratic
 //! tetrahedra) are rejected: mtcut meshes are linear tetrahedra only.
 
-use super::error::{IoError, IoErrorKind};
+use super::error::{FileTerms, IoError, invalid_mesh};
 use crate::geom::DVec3;
-use crate::mesh::{Attribute, ImportReport, MeshError, TetMesh};
+use crate::mesh::{Attribute, ImportReport, Numbering, TetMesh};
 use std::path::Path;
 
 /// The name of the attribute columns holding medit references.
@@ -259,18 +259,22 @@ pub fn parse_medit(text: &str, path: &Path) -> Result<(TetMesh, ImportReport), I
         }
         tets.push(t);
     }
-    let (mut mesh, report) = TetMesh::from_arrays(positions, tets).map_err(|e| {
-        let element = match &e {
-            MeshError::RepeatedVertex { tet, .. }
-            | MeshError::DegenerateTet { tet }
-            | MeshError::IndexOutOfRange { tet, .. } => {
-                format!("line {}, tetrahedron {}", raw_tets[*tet].1, tet + 1)
-            }
-            MeshError::NonFiniteCoordinate { vertex } => format!("vertex {}", vertex + 1),
-            _ => "mesh (tets numbered from 0 in file order)".to_string(),
-        };
-        IoError::new(path, IoErrorKind::InvalidMesh { element, source: e })
-    })?;
+    let terms = FileTerms {
+        vertex: "vertex",
+        vertices: "vertices",
+        tets: "tetrahedra",
+        numbering: Numbering {
+            first_vertex: 1,
+            first_tet: 1,
+        },
+        tet_note: "",
+    };
+    let (mut mesh, report) = TetMesh::from_arrays_numbered(positions, tets, terms.numbering)
+        .map_err(|e| {
+            invalid_mesh(path, e, &terms, |t| {
+                format!("line {}: tetrahedron {}", raw_tets[t].1, t + 1)
+            })
+        })?;
     mesh.point_data
         .insert(Attribute::new(MEDIT_REF, 1, vertex_refs).expect("one reference per vertex"));
     mesh.cell_data

@@ -6,9 +6,9 @@
 //! base, as TetGen itself decides. Node attributes and markers become point data
 //! (`attribute_K`, `boundary_marker`), element attributes cell data (`attribute_K`).
 
-use super::error::{IoError, IoErrorKind};
+use super::error::{FileTerms, IoError, invalid_mesh};
 use crate::geom::DVec3;
-use crate::mesh::{Attribute, ImportReport, MeshError, TetMesh};
+use crate::mesh::{Attribute, ImportReport, Numbering, TetMesh};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -206,7 +206,6 @@ pub fn parse_tetgen(
     let mut tets = Vec::with_capacity(rows);
     let mut eattrs = vec![Vec::with_capacity(rows); n_eattr];
     let mut tet_lines = Vec::with_capacity(rows);
-    let mut ebase = None;
     for i in 0..m {
         let (ln, l) = lines.next().ok_or_else(|| {
             IoError::malformed(
@@ -216,7 +215,6 @@ pub fn parse_tetgen(
         })?;
         let mut f = l.split_ascii_whitespace();
         let id = numbers::<u64>(ele_file, ln, &mut f, 1, "element id")?[0];
-        ebase.get_or_insert(id);
         let v: Vec<u64> = numbers(ele_file, ln, &mut f, 4, "node index")?;
         let mut tet = [0u32; 4];
         for (k, &x) in v.iter().enumerate() {
@@ -240,19 +238,34 @@ pub fn parse_tetgen(
         }
     }
 
-    let (mut mesh, report) = TetMesh::from_arrays(positions, tets).map_err(|e| {
-        let element = match &e {
-            MeshError::RepeatedVertex { tet, .. }
-            | MeshError::DegenerateTet { tet }
-            | MeshError::IndexOutOfRange { tet, .. } => {
-                let (ln, id) = tet_lines[*tet];
-                format!("line {ln}, tetrahedron {id}")
-            }
-            MeshError::NonFiniteCoordinate { vertex } => format!("node {}", *vertex as u64 + base),
-            _ => "mesh".to_string(),
-        };
-        IoError::new(&ele_path, IoErrorKind::InvalidMesh { element, source: e })
-    })?;
+    // Tetrahedra numbered in sequence from the first id (as TetGen writes them) are named
+    // by those numbers in a validation report; otherwise by their order in the file.
+    let first_tet = tet_lines.first().map_or(0, |&(_, id)| id);
+    let in_sequence = tet_lines
+        .iter()
+        .enumerate()
+        .all(|(k, &(_, id))| id == first_tet + k as u64);
+    let terms = FileTerms {
+        vertex: "node",
+        vertices: "nodes",
+        tets: "tetrahedra",
+        numbering: Numbering {
+            first_vertex: base,
+            first_tet: if in_sequence { first_tet } else { 0 },
+        },
+        tet_note: if in_sequence {
+            ""
+        } else {
+            ", by their order in the .ele file from 0: its ids are not in sequence"
+        },
+    };
+    let (mut mesh, report) = TetMesh::from_arrays_numbered(positions, tets, terms.numbering)
+        .map_err(|e| {
+            invalid_mesh(&ele_path, e, &terms, |t| {
+                let (ln, id) = tet_lines[t];
+                format!("line {ln}: tetrahedron {id}")
+            })
+        })?;
     for (k, col) in attrs.into_iter().enumerate() {
         mesh.point_data
             .insert(Attribute::new(format!("attribute_{k}"), 1, col).expect("scalar column"));

@@ -20,6 +20,7 @@ pub use attributes::{Attribute, Attributes};
 pub use boundary::Boundary;
 pub use ids::{FragmentId, Tet, TetId, VertexId};
 pub use quality::{QualitySummary, TetQuality, tet_quality};
+pub(crate) use validate::Numbering;
 pub use validate::{Severity, ValidationReport, Violation, ViolationKind};
 
 use crate::geom::{Aabb, DVec3, Sign, orient3d, signed_volume_inexact};
@@ -95,6 +96,16 @@ impl TetMesh {
         positions: Vec<DVec3>,
         tets: Vec<[u32; 4]>,
     ) -> Result<(TetMesh, ImportReport), MeshError> {
+        Self::from_arrays_numbered(positions, tets, Numbering::ZERO)
+    }
+
+    /// [`from_arrays`](Self::from_arrays) for a file reader: a rejected mesh's validation
+    /// report numbers vertices and tets as the file does (`numbering`).
+    pub(crate) fn from_arrays_numbered(
+        positions: Vec<DVec3>,
+        tets: Vec<[u32; 4]>,
+        numbering: Numbering,
+    ) -> Result<(TetMesh, ImportReport), MeshError> {
         if tets.is_empty() {
             return Err(MeshError::Empty);
         }
@@ -167,7 +178,7 @@ impl TetMesh {
             point_data: Attributes::new(),
             cell_data: Attributes::new(),
         };
-        let validation = validate::validate_with(&mesh, false);
+        let validation = validate::validate_with(&mesh, false, numbering);
         if !validation.is_valid() {
             return Err(MeshError::Invalid(validation));
         }

@@ -11,6 +11,40 @@ use std::fmt;
 /// How many examples each violation class keeps.
 const EXAMPLES: usize = 5;
 
+/// How a report numbers vertices and tets in its examples: from 0, as the mesh does
+/// ([`Numbering::ZERO`]), or as the file the mesh was read from numbers its nodes and
+/// tetrahedra (TetGen's files from 0 or 1, medit's from 1), so that a rejected file's
+/// message names the numbers its author sees.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Numbering {
+    /// The number of vertex 0.
+    pub first_vertex: u64,
+    /// The number of tet 0.
+    pub first_tet: u64,
+}
+
+impl Numbering {
+    /// The mesh's own ids.
+    pub const ZERO: Numbering = Numbering {
+        first_vertex: 0,
+        first_tet: 0,
+    };
+
+    fn vertex(self, v: impl Into<u64>) -> u64 {
+        v.into() + self.first_vertex
+    }
+
+    fn tet(self, t: usize) -> u64 {
+        t as u64 + self.first_tet
+    }
+
+    /// Vertices as "(a, b, c)".
+    fn vertex_list(self, vs: &[VertexId]) -> String {
+        let ids: Vec<String> = vs.iter().map(|v| self.vertex(v.0).to_string()).collect();
+        format!("({})", ids.join(", "))
+    }
+}
+
 /// A class of invariant violation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ViolationKind {
@@ -138,18 +172,21 @@ impl fmt::Display for ValidationReport {
 }
 
 pub(super) fn validate(mesh: &TetMesh) -> ValidationReport {
-    validate_with(mesh, true)
+    validate_with(mesh, true, Numbering::ZERO)
 }
 
 /// [`validate`], with the per-tet checks (repeated vertices, orientation) made only when
-/// `check_tets`: `TetMesh::from_arrays` has just made them itself, tet by tet.
-pub(super) fn validate_with(mesh: &TetMesh, check_tets: bool) -> ValidationReport {
+/// `check_tets` (`TetMesh::from_arrays` has just made them itself, tet by tet), and the
+/// examples numbered by `num`.
+pub(super) fn validate_with(mesh: &TetMesh, check_tets: bool, num: Numbering) -> ValidationReport {
     let mut r = ValidationReport::default();
     let pos = mesh.positions();
     let tets = mesh.tets();
     for (i, p) in pos.iter().enumerate() {
         if !p.is_finite() {
-            r.add(ViolationKind::NonFiniteCoordinate, || format!("vertex {i}"));
+            r.add(ViolationKind::NonFiniteCoordinate, || {
+                format!("vertex {}", num.vertex(i as u64))
+            });
         }
     }
     let n = pos.len();
@@ -158,7 +195,7 @@ pub(super) fn validate_with(mesh: &TetMesh, check_tets: bool) -> ValidationRepor
         if let Some(v) = tet.iter().find(|v| v.idx() >= n) {
             in_range = false;
             r.add(ViolationKind::IndexOutOfRange, || {
-                format!("tet {t} uses vertex {v} of {n}")
+                format!("tet {} uses vertex {} of {n}", num.tet(t), num.vertex(v.0))
             });
         }
     }
@@ -168,7 +205,7 @@ pub(super) fn validate_with(mesh: &TetMesh, check_tets: bool) -> ValidationRepor
         return r;
     }
     if check_tets {
-        check_tets_alone(mesh, &mut r);
+        check_tets_alone(mesh, num, &mut r);
     }
     let mut used = vec![false; n];
     for tet in tets {
@@ -178,19 +215,24 @@ pub(super) fn validate_with(mesh: &TetMesh, check_tets: bool) -> ValidationRepor
     }
     for (v, u) in used.iter().enumerate() {
         if !u {
-            r.add(ViolationKind::UnusedVertex, || format!("vertex {v}"));
+            r.add(ViolationKind::UnusedVertex, || {
+                format!("vertex {}", num.vertex(v as u64))
+            });
         }
     }
     let faces = match_faces(n, tets, false);
     for &(t, f, owners) in &faces.overshared {
         r.add(ViolationKind::FaceOverShared, || {
             let fv = face_vertices(&mesh.tet(t), f as usize);
-            format!("face {} of tet {t} has {owners} tets", vertex_list(&fv))
+            let t = num.tet(t.idx());
+            format!("face {} of tet {t} has {owners} tets", num.vertex_list(&fv))
         });
     }
     for &(t, f, u) in &faces.same_orientation {
         r.add(ViolationKind::FaceSameOrientation, || {
-            format!("face {f} of tet {t} and tet {u}")
+            let fv = face_vertices(&mesh.tet(t), f as usize);
+            let (t, u) = (num.tet(t.idx()), num.tet(u.idx()));
+            format!("face {} of tet {t} and tet {u}", num.vertex_list(&fv))
         });
     }
     let boundary: Vec<[VertexId; 3]> = faces
@@ -198,14 +240,14 @@ pub(super) fn validate_with(mesh: &TetMesh, check_tets: bool) -> ValidationRepor
         .iter()
         .map(|b| face_vertices(&mesh.tet(b.tet), b.face as usize))
         .collect();
-    check_manifold(n, &boundary, &mut r);
-    check_hanging(pos, &boundary, &mut r);
+    check_manifold(n, &boundary, num, &mut r);
+    check_hanging(pos, &boundary, num, &mut r);
     r
 }
 
 /// Repeated vertices and orientation, tet by tet (in parallel; violations are rare and
 /// reported in tet order).
-fn check_tets_alone(mesh: &TetMesh, r: &mut ValidationReport) {
+fn check_tets_alone(mesh: &TetMesh, num: Numbering, r: &mut ValidationReport) {
     let pos = mesh.positions();
     let bad: Vec<(usize, ViolationKind)> = mesh
         .tets()
@@ -222,19 +264,16 @@ fn check_tets_alone(mesh: &TetMesh, r: &mut ValidationReport) {
         .collect();
     for (t, kind) in bad {
         r.add(kind, || match kind {
-            ViolationKind::RepeatedVertex => format!("tet {t} {}", vertex_list(&mesh.tets()[t])),
+            ViolationKind::RepeatedVertex => {
+                format!("tet {} {}", num.tet(t), num.vertex_list(&mesh.tets()[t]))
+            }
             _ => format!(
-                "tet {t} (volume {:e})",
+                "tet {} (volume {:e})",
+                num.tet(t),
                 mesh.tet_volume(TetId::from_usize(t))
             ),
         });
     }
-}
-
-/// Vertices as "(a, b, c)" in messages.
-fn vertex_list(vs: &[VertexId]) -> String {
-    let ids: Vec<String> = vs.iter().map(|v| v.to_string()).collect();
-    format!("({})", ids.join(", "))
 }
 
 fn check_attributes(mesh: &TetMesh, r: &mut ValidationReport) {
@@ -260,7 +299,12 @@ fn check_attributes(mesh: &TetMesh, r: &mut ValidationReport) {
 /// sort): at vertex `a`, a corner's face goes `a -> next -> prev`, so edge `(a, w)` bounds
 /// one face per corner with `next == w` (traversing it away from `a`) or `prev == w`
 /// (towards `a`).
-fn check_manifold(n_vertices: usize, boundary: &[[VertexId; 3]], r: &mut ValidationReport) {
+fn check_manifold(
+    n_vertices: usize,
+    boundary: &[[VertexId; 3]],
+    num: Numbering,
+    r: &mut ValidationReport,
+) {
     let mut start = vec![0u32; n_vertices + 1];
     for v in boundary.iter().flatten() {
         start[v.idx() + 1] += 1;
@@ -304,7 +348,9 @@ fn check_manifold(n_vertices: usize, boundary: &[[VertexId; 3]], r: &mut Validat
     for &(lo, hi, faces, _) in &bad_edges {
         r.add(ViolationKind::NonManifoldBoundary, || {
             format!(
-                "edge ({lo}, {hi}) bounds {faces} boundary faces{}",
+                "edge ({}, {}) bounds {faces} boundary faces{}",
+                num.vertex(lo.0),
+                num.vertex(hi.0),
                 if faces == 2 {
                     " with the same direction"
                 } else {
@@ -341,6 +387,7 @@ fn check_manifold(n_vertices: usize, boundary: &[[VertexId; 3]], r: &mut Validat
         }
         if cycles > 1 {
             r.add(ViolationKind::NonManifoldBoundary, || {
+                let a = num.vertex(a as u64);
                 format!("vertex {a} joins {cycles} separate boundary fans")
             });
         }
@@ -352,7 +399,12 @@ fn check_manifold(n_vertices: usize, boundary: &[[VertexId; 3]], r: &mut Validat
 /// the boundary vertices finds those in each face's box (in parallel over faces) in time
 /// that follows the vertices found, however unevenly they are spread — a cut's crack
 /// packs many small faces into a small region, where a uniform grid's cells overflow.
-fn check_hanging(pos: &[DVec3], boundary: &[[VertexId; 3]], r: &mut ValidationReport) {
+fn check_hanging(
+    pos: &[DVec3],
+    boundary: &[[VertexId; 3]],
+    num: Numbering,
+    r: &mut ValidationReport,
+) {
     if boundary.is_empty() {
         return;
     }
@@ -402,8 +454,9 @@ fn check_hanging(pos: &[DVec3], boundary: &[[VertexId; 3]], r: &mut ValidationRe
     for (v, fi) in hits {
         r.add(ViolationKind::HangingVertex, || {
             format!(
-                "vertex {v} lies on boundary face {}",
-                vertex_list(&boundary[fi as usize])
+                "vertex {} lies on boundary face {}",
+                num.vertex(v.0),
+                num.vertex_list(&boundary[fi as usize])
             )
         });
     }

@@ -4,8 +4,8 @@ use super::binary::{decode_base64, read_array};
 use super::format::{VTK_TETRA, cell_type_name};
 use super::values::{first_mismatch, integer_at, parse_ascii, to_f64, to_index_groups, to_points};
 use super::xml::{ArrayDecl, Format, Header, Section, XmlError, scan};
-use crate::io::error::{IoError, IoErrorKind};
-use crate::mesh::{Attribute, Attributes, ImportReport, MeshError, TetMesh};
+use crate::io::error::{FileTerms, IoError, invalid_mesh};
+use crate::mesh::{Attribute, Attributes, ImportReport, Numbering, TetMesh};
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -131,16 +131,15 @@ impl<'a> Reader<'a> {
         let point_data = self.attributes(&header, Section::PointData, n)?;
         let cell_data = self.attributes(&header, Section::CellData, m)?;
 
-        let (mut mesh, report) = TetMesh::from_arrays(positions, tets).map_err(|e| {
-            let element = match &e {
-                MeshError::RepeatedVertex { tet, .. }
-                | MeshError::DegenerateTet { tet }
-                | MeshError::IndexOutOfRange { tet, .. } => format!("cell {tet}"),
-                MeshError::NonFiniteCoordinate { vertex } => format!("point {vertex}"),
-                _ => "cells (tets are numbered as cells)".to_string(),
-            };
-            IoError::new(self.path, IoErrorKind::InvalidMesh { element, source: e })
-        })?;
+        let terms = FileTerms {
+            vertex: "point",
+            vertices: "points",
+            tets: "cells",
+            numbering: Numbering::ZERO,
+            tet_note: "",
+        };
+        let (mut mesh, report) = TetMesh::from_arrays(positions, tets)
+            .map_err(|e| invalid_mesh(self.path, e, &terms, |t| format!("cell {t}")))?;
         mesh.point_data = point_data;
         mesh.cell_data = cell_data;
         Ok((mesh, report))
