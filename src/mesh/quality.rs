@@ -24,6 +24,21 @@ pub struct TetQuality {
 /// Quality of the tet with corners `p` (positively oriented for meaningful angles).
 pub fn tet_quality(p: [DVec3; 4]) -> TetQuality {
     let volume = signed_volume_inexact(p[0], p[1], p[2], p[3]);
+    // Angles and the aspect ratio do not depend on the tet's place or size: they are
+    // measured on the tet moved to the origin and scaled to a unit longest edge, so that
+    // the products below (up to the eighth power of a length) neither overflow nor
+    // underflow however large or small the mesh's coordinates (at 1e40 the aspect ratio
+    // came out infinite, at 1e-40 wrong).
+    let longest = TET_EDGES
+        .iter()
+        .map(|&[a, b]| (p[a] - p[b]).length())
+        .fold(0.0, f64::max);
+    let p = if longest > 0.0 && longest.is_finite() {
+        p.map(|x| (x - p[0]) / longest)
+    } else {
+        p
+    };
+    let unit_volume = signed_volume_inexact(p[0], p[1], p[2], p[3]);
     let normals = TET_FACES.map(|f| triangle_normal(p[f[0]], p[f[1]], p[f[2]]));
     let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
     for faces in FACES_OF_EDGE {
@@ -39,12 +54,12 @@ pub fn tet_quality(p: [DVec3; 4]) -> TetQuality {
         .iter()
         .map(|f| triangle_area(p[f[0]], p[f[1]], p[f[2]]))
         .sum();
-    let inradius = 3.0 * volume.abs() / area;
+    let inradius = 3.0 * unit_volume.abs() / area;
     // Circumradius from the products of opposite edge lengths (edge e and 5 − e).
     let len = TET_EDGES.map(|[a, b]| (p[a] - p[b]).length());
     let (x, y, z) = (len[0] * len[5], len[1] * len[4], len[2] * len[3]);
     let prod = (x + y + z) * (x + y - z) * (x - y + z) * (-x + y + z);
-    let circumradius = prod.max(0.0).sqrt() / (24.0 * volume.abs());
+    let circumradius = prod.max(0.0).sqrt() / (24.0 * unit_volume.abs());
     let aspect_ratio = if inradius > 0.0 && circumradius.is_finite() {
         circumradius / (3.0 * inradius)
     } else {
@@ -135,6 +150,28 @@ mod tests {
         assert!((q.max_dihedral_deg - 90.0).abs() < 1e-9);
         assert!((q.min_dihedral_deg - 54.735_610_317_245_35).abs() < 1e-9);
         assert!(q.aspect_ratio > 1.0);
+    }
+
+    /// The same tet at any scale and place: the same angles and aspect ratio, its volume
+    /// scaled by the cube.
+    #[test]
+    fn quality_does_not_depend_on_scale() {
+        let p = [
+            DVec3::new(0.1, 0.2, 0.3),
+            DVec3::new(0.4, 0.9, 0.1),
+            DVec3::new(1.3, 0.1, 0.2),
+            DVec3::new(0.5, 0.4, 0.05),
+        ];
+        let q = tet_quality(p);
+        assert!(q.volume > 0.0 && q.aspect_ratio > 1.0, "{q:?}");
+        for s in [1e-100, 1e-40, 1e40, 1e100] {
+            let r = tet_quality(p.map(|x| x * s + DVec3::splat(3.0 * s)));
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();
+            assert!(close(r.min_dihedral_deg, q.min_dihedral_deg), "{s}: {r:?}");
+            assert!(close(r.max_dihedral_deg, q.max_dihedral_deg), "{s}: {r:?}");
+            assert!(close(r.aspect_ratio, q.aspect_ratio), "{s}: {r:?}");
+            assert!(close(r.volume, q.volume * s * s * s), "{s}: {r:?}");
+        }
     }
 
     #[test]
