@@ -630,6 +630,15 @@ fn clone_is_deep_and_set_vertices_is_checked() {
         "mtcut_mesh_set_vertices",
         "vertex 1",
     );
+    let mut far = CUBE_XYZ;
+    far[7] = -1e60;
+    let s = unsafe { mtcut_mesh_set_vertices(copy.0, far.as_ptr(), 8) };
+    expect(
+        s,
+        MTCUT_STATUS_INVALID_ARGUMENT,
+        "mtcut_mesh_set_vertices",
+        "vertex 2 has coordinate -1e60, larger in magnitude than the 1e50",
+    );
     let s = unsafe { mtcut_mesh_set_vertices(copy.0, CUBE_XYZ.as_ptr(), 7) };
     expect(
         s,

@@ -535,3 +535,28 @@ fn messages_number_as_the_file_does() {
         ],
     );
 }
+
+/// A coordinate beyond the supported ±1e50, or a mesh smaller than 1e-50 across: refused
+/// by the readers naming the line and node, not taken for degenerate tets.
+#[test]
+fn coordinates_beyond_the_supported_range() {
+    let (node, ele) = (node_text(&POINTS, ""), ele_text(&TETS));
+    let m = tetgen_err(&node.replacen("\n2 0 1 0\n", "\n2 0 1e60 0\n", 1), &ele);
+    assert_mentions(
+        &m,
+        &[
+            "bad.node",
+            "line 4",
+            "node 2 has coordinate 1e60",
+            "larger in magnitude than the 1e50",
+        ],
+    );
+    let good = medit_text(&POINTS, &TETS, "");
+    let m = medit_err(&good.replacen("0 1 0 0", "0 -3e55 0 0", 1));
+    assert_mentions(&m, &["bad.mesh", "line 7", "vertex 3 has coordinate -3e55"]);
+    let tiny: Vec<[f64; 3]> = POINTS.iter().map(|p| p.map(|x| x * 1e-60)).collect();
+    let m = tetgen_err(&node_text(&tiny, ""), &ele);
+    assert_mentions(&m, &["bad.ele", "below the 1e-50 mtcut supports"]);
+    let m = vtu_err(&vtu_text(&text_points(&tiny), &tets_of(&TETS), &[10, 10]));
+    assert_mentions(&m, &["bad.vtu", "below the 1e-50 mtcut supports"]);
+}

@@ -1147,8 +1147,15 @@ pub(crate) fn check_positions(positions: &[DVec3], expected: usize) -> Result<()
             expected,
         });
     }
-    match positions.iter().position(|p| !p.is_finite()) {
-        Some(vertex) => Err(CutError::NonFinitePosition { vertex }),
+    if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
+        return Err(CutError::NonFinitePosition { vertex });
+    }
+    match positions
+        .iter()
+        .enumerate()
+        .find_map(|(v, p)| crate::geom::coordinate_out_of_range(*p).map(|x| (v, x)))
+    {
+        Some((vertex, value)) => Err(CutError::PositionOutOfRange { vertex, value }),
         None => Ok(()),
     }
 }

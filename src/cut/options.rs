@@ -197,6 +197,12 @@ pub enum CutError {
     PositionCount { count: usize, expected: usize },
     #[error("position of vertex {vertex} is not finite")]
     NonFinitePosition { vertex: usize },
+    #[error(
+        "position of vertex {vertex} has coordinate {value:e}, larger in magnitude than the \
+         {:e} mtcut supports",
+        crate::geom::MAX_COORDINATE
+    )]
+    PositionOutOfRange { vertex: usize, value: f64 },
     #[error("tet {tet} would be inverted or flat at the new positions")]
     InvertedTet { tet: usize },
     #[error("the deformed positions fold tet {tet} of the MT, which the cut meets")]

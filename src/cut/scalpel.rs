@@ -77,9 +77,7 @@ impl Scalpel {
 
     /// A scalpel on `mt` (which should be valid), its blade at `blade`.
     pub fn new(mt: Mt, blade: Blade) -> Result<Scalpel, ScalpelError> {
-        if let Some(index) = blade.iter().position(|p| !p.is_finite()) {
-            return Err(PolygonError::NonFinite { index }.into());
-        }
+        crate::geom::check_points(&blade)?;
         Ok(Scalpel {
             cutter: MtCutter::new(mt, Scalpel::OPTIONS)?,
             blade,

@@ -272,8 +272,9 @@ fn cut_with(
 /// polygon crosses is replaced by tets it does not cross, and the two sides of the cut
 /// get their own copies of the vertices on it (the mesh may fall apart into several
 /// components: `mtcut_mesh_component_count`). The polygon must have at least 3 distinct,
-/// finite corners, be planar (within 1e-6 of its diameter) and convex; otherwise
-/// `MTCUT_STATUS_INVALID_ARGUMENT` says which corner is wrong and the mesh is unchanged.
+/// finite corners of magnitude at most 1e50, be planar (within 1e-6 of its diameter) and convex;
+/// otherwise `MTCUT_STATUS_INVALID_ARGUMENT` says which corner is wrong and the mesh is
+/// unchanged.
 /// Attribute rows of new vertices are interpolated (an extraction's vertex ids,
 /// "mt_vertex", are -1 at points the cut makes and copied at duplicated vertices); new
 /// tets inherit their parent's rows, and the tet column "mtcut:cut" numbers the cut that
@@ -421,7 +422,8 @@ pub const MTCUT_SWEEP_MAX_POINTS: usize = 6;
 /// `3 x MTCUT_SWEEP_MAX_POINTS` doubles) receives the corners, polygon after polygon, in
 /// order around each; `point_counts` (room for 2) the number of corners of each;
 /// `*n_polygons` 1 or 2. A blade that does not move, a sweep folding over itself or a
-/// coordinate that is not finite gives `MTCUT_STATUS_INVALID_ARGUMENT`, nothing written.
+/// coordinate that is not finite or larger in magnitude than 1e50 gives `MTCUT_STATUS_INVALID_ARGUMENT`,
+/// nothing written.
 ///
 /// # Safety
 /// `start_xyz` and `end_xyz` readable for 6 doubles each; `polygons_xyz` writable for

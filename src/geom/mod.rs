@@ -17,7 +17,7 @@ pub use plane::Plane;
 pub use polygon::{
     CutPolygon, PLANE_SNAP, PLANE_SNAP_ANGLE, PolygonError, SWEEP_PLANARITY, scalpel_sweep,
 };
-pub(crate) use polygon::{lies_in_plane, snap_to_plane};
+pub(crate) use polygon::{check_points, lies_in_plane, snap_to_plane};
 pub use predicates::{
     Sign, orient2d, orient3d, signed_volume, signed_volume_inexact, triangle_area, triangle_normal,
 };
@@ -25,6 +25,22 @@ pub use tolerance::Tolerance;
 
 /// The position type used throughout the library (glam's double-precision 3-vector).
 pub use glam::DVec3;
+
+/// The largest coordinate magnitude mtcut accepts, in meshes, positions and polygons. The
+/// exact predicates and the cut's measures multiply up to four coordinate differences
+/// together: from about 1e75 on they overflow (a polygon of that size was refused as
+/// flat, tets at 1e150 were taken for degenerate). No mesh in any physical unit comes
+/// near; the whole pipeline is tested at 1e50.
+pub const MAX_COORDINATE: f64 = 1e50;
+
+/// The smallest bounding-box diagonal of a mesh mtcut accepts: below about 1e-75 the
+/// same products underflow (tets at 1e-150 were taken for degenerate); tested at 1e-50.
+pub const MIN_MESH_SIZE: f64 = 1e-50;
+
+/// The coordinate of `p` beyond ±[`MAX_COORDINATE`], if any (`p` finite).
+pub fn coordinate_out_of_range(p: DVec3) -> Option<f64> {
+    p.to_array().into_iter().find(|c| c.abs() > MAX_COORDINATE)
+}
 
 /// An axis-aligned bounding box.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -19,6 +19,12 @@ pub enum PolygonError {
     TooFewPoints { count: usize },
     #[error("point {index} has a NaN or infinite coordinate")]
     NonFinite { index: usize },
+    #[error(
+        "point {index} has coordinate {value:e}, larger in magnitude than the {:e} mtcut \
+         supports",
+        super::MAX_COORDINATE
+    )]
+    OutOfRange { index: usize, value: f64 },
     #[error("points {first} and {second} are the same point: give each corner once")]
     RepeatedPoint { first: usize, second: usize },
     #[error("the polygon is degenerate (its points are collinear or its area is zero at its size)")]
@@ -85,9 +91,7 @@ impl CutPolygon {
         if n < 3 {
             return Err(PolygonError::TooFewPoints { count: n });
         }
-        if let Some(index) = points.iter().position(|p| !p.is_finite()) {
-            return Err(PolygonError::NonFinite { index });
-        }
+        check_points(points)?;
         for i in 0..n {
             for j in i + 1..n {
                 if points[i] == points[j] {
@@ -452,6 +456,21 @@ fn in_plane_rounding(polygon: &CutPolygon) -> f64 {
 }
 
 /// The polygons swept by a straight blade moving during one time step: the segment
+/// Every point finite and within ±[`MAX_COORDINATE`](super::MAX_COORDINATE).
+pub(crate) fn check_points(points: &[DVec3]) -> Result<(), PolygonError> {
+    if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+        return Err(PolygonError::NonFinite { index });
+    }
+    match points
+        .iter()
+        .enumerate()
+        .find_map(|(i, p)| super::coordinate_out_of_range(*p).map(|v| (i, v)))
+    {
+        Some((index, value)) => Err(PolygonError::OutOfRange { index, value }),
+        None => Ok(()),
+    }
+}
+
 /// `start[0]`–`start[1]` at t0 and `end[0]`–`end[1]` at t1 (corresponding ends). One
 /// quadrilateral when it is planar (within `planarity` of its size) and convex; otherwise
 /// two triangles (along the shorter diagonal, or from the reflex corner of a planar
@@ -462,9 +481,7 @@ pub fn scalpel_sweep(
     planarity: Tolerance,
 ) -> Result<Vec<CutPolygon>, PolygonError> {
     let quad = [start[0], start[1], end[1], end[0]];
-    if let Some(index) = quad.iter().position(|p| !p.is_finite()) {
-        return Err(PolygonError::NonFinite { index });
-    }
+    check_points(&quad)?;
     match (start[0] == end[0], start[1] == end[1]) {
         (true, true) => return Err(PolygonError::Degenerate),
         (true, false) => return CutPolygon::with_tolerance(&quad[..3], planarity).map(|p| vec![p]),

@@ -1,5 +1,6 @@
 //! The one error type of the file layer: which file, where in it, and what is wrong.
 
+use crate::geom::MAX_COORDINATE;
 use crate::mesh::{MeshError, Numbering};
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -88,10 +89,15 @@ pub(crate) fn invalid_mesh(
                 v(*vertex as u64)
             )
         }
+        MeshError::CoordinateOutOfRange { vertex, value } => format!(
+            "{vw} {} has coordinate {value:e}, larger in magnitude than the \
+             {MAX_COORDINATE:e} mtcut supports: rescale the mesh",
+            v(*vertex as u64)
+        ),
         MeshError::Invalid(report) => format!(
             "{report}; numbered as in the file (vertices are its {vws}, tets its {tws}{tet_note})"
         ),
-        MeshError::Empty | MeshError::TooLarge { .. } => e.to_string(),
+        MeshError::Empty | MeshError::TooLarge { .. } | MeshError::TooSmall { .. } => e.to_string(),
     };
     IoError::new(path, IoErrorKind::InvalidMesh { message, source: e })
 }

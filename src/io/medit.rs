@@ -9,7 +9,7 @@
 //! tetrahedra) are rejected: mtcut meshes are linear tetrahedra only.
 
 use super::error::{FileTerms, IoError, invalid_mesh};
-use crate::geom::DVec3;
+use crate::geom::{DVec3, MAX_COORDINATE, coordinate_out_of_range};
 use crate::mesh::{Attribute, ImportReport, Numbering, TetMesh};
 use std::path::Path;
 
@@ -170,6 +170,16 @@ pub fn parse_medit(text: &str, path: &Path) -> Result<(TetMesh, ImportReport), I
                         return Err(at(
                             first_line,
                             format!("vertex {} has a NaN or infinite coordinate", i + 1),
+                        ));
+                    }
+                    if let Some(value) = coordinate_out_of_range(p) {
+                        return Err(at(
+                            first_line,
+                            format!(
+                                "vertex {} has coordinate {value:e}, larger in magnitude than the \
+                                 {MAX_COORDINATE:e} mtcut supports: rescale the mesh",
+                                i + 1
+                            ),
                         ));
                     }
                     positions.push(p);

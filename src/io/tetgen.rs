@@ -7,7 +7,7 @@
 //! (`attribute_K`, `boundary_marker`), element attributes cell data (`attribute_K`).
 
 use super::error::{FileTerms, IoError, invalid_mesh};
-use crate::geom::DVec3;
+use crate::geom::{DVec3, MAX_COORDINATE, coordinate_out_of_range};
 use crate::mesh::{Attribute, ImportReport, Numbering, TetMesh};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -161,6 +161,17 @@ pub fn parse_tetgen(
                 &node_path,
                 ln,
                 format!("node {} has a NaN or infinite coordinate", id[0]),
+            ));
+        }
+        if let Some(value) = coordinate_out_of_range(p) {
+            return Err(IoError::at_line(
+                &node_path,
+                ln,
+                format!(
+                    "node {} has coordinate {value:e}, larger in magnitude than the \
+                     {MAX_COORDINATE:e} mtcut supports: rescale the mesh",
+                    id[0]
+                ),
             ));
         }
         positions.push(p);

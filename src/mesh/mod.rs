@@ -23,7 +23,9 @@ pub use quality::{QualitySummary, TetQuality, tet_quality};
 pub(crate) use validate::Numbering;
 pub use validate::{Severity, ValidationReport, Violation, ViolationKind};
 
-use crate::geom::{Aabb, DVec3, Sign, orient3d, signed_volume_inexact};
+use crate::geom::{
+    Aabb, DVec3, MIN_MESH_SIZE, Sign, coordinate_out_of_range, orient3d, signed_volume_inexact,
+};
 use rayon::prelude::*;
 
 /// A tetrahedral mesh: positions, tets (four vertex ids each, positively oriented), and
@@ -70,6 +72,18 @@ pub enum MeshError {
     Empty,
     #[error("vertex {vertex} has a coordinate that is NaN or infinite")]
     NonFiniteCoordinate { vertex: usize },
+    #[error(
+        "vertex {vertex} has coordinate {value:e}, larger in magnitude than the {:e} mtcut \
+         supports: rescale the mesh (to metres or millimetres, say)",
+        crate::geom::MAX_COORDINATE
+    )]
+    CoordinateOutOfRange { vertex: usize, value: f64 },
+    #[error(
+        "the mesh is {diagonal:e} across (its bounding box's diagonal), below the {:e} mtcut \
+         supports: rescale it",
+        crate::geom::MIN_MESH_SIZE
+    )]
+    TooSmall { diagonal: f64 },
     #[error("tet {tet} uses vertex index {index}, but the mesh has {n_vertices} vertices")]
     IndexOutOfRange {
         tet: usize,
@@ -114,6 +128,17 @@ impl TetMesh {
         }
         if let Some(vertex) = positions.par_iter().position_first(|p| !p.is_finite()) {
             return Err(MeshError::NonFiniteCoordinate { vertex });
+        }
+        if let Some(vertex) = positions
+            .par_iter()
+            .position_first(|p| coordinate_out_of_range(*p).is_some())
+        {
+            let value = coordinate_out_of_range(positions[vertex]).unwrap_or(f64::INFINITY);
+            return Err(MeshError::CoordinateOutOfRange { vertex, value });
+        }
+        let diagonal = Aabb::from_points(&positions).diagonal();
+        if diagonal < MIN_MESH_SIZE {
+            return Err(MeshError::TooSmall { diagonal });
         }
         let n = positions.len();
         // Tet by tet, in parallel: what is wrong with it or how it is oriented. The first
