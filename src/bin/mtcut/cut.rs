@@ -246,8 +246,8 @@ pub fn run(args: Args) -> CliResult {
         "result     {} tets, {} vertices; volume {} (before {})",
         mesh.nb_tets(),
         mesh.nb_vertices(),
-        mesh.volume(),
-        volume_before
+        crate::number(mesh.volume()),
+        crate::number(volume_before)
     );
     // The first few parts; --json lists them all.
     const SHOWN: usize = 8;

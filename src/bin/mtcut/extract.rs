@@ -242,7 +242,7 @@ fn print_text(
         100.0 * s.tets as f64 / mt.info().input_tets.max(1) as f64,
         mt.info().input_tets,
         s.vertices,
-        volume
+        crate::number(volume)
     );
     out!(
         "error      up to {:e}; {} fragment(s) not applied",

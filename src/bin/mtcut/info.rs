@@ -97,11 +97,11 @@ impl MeshInfo {
             self.report.reoriented_tets
         );
         out!("bbox       {}", bbox_text(lo, hi));
-        out!("volume     {}", self.volume);
+        out!("volume     {}", crate::number(self.volume));
         out!(
             "boundary   {} faces, area {}",
             self.boundary_faces,
-            self.boundary_area
+            crate::number(self.boundary_area)
         );
         out!("components {}", self.components);
         out!(
@@ -313,8 +313,6 @@ pub fn run(args: Args) -> CliResult {
 
 /// `[x, y, z] .. [x, y, z]`, as both reports print a box.
 fn bbox_text(lo: mtcut::geom::DVec3, hi: mtcut::geom::DVec3) -> String {
-    format!(
-        "[{}, {}, {}] .. [{}, {}, {}]",
-        lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
-    )
+    let [a, b, c, d, e, f] = [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z].map(crate::number);
+    format!("[{a}, {b}, {c}] .. [{d}, {e}, {f}]")
 }

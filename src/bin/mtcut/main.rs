@@ -11,6 +11,18 @@ macro_rules! out {
     }};
 }
 
+/// A measure in a text report: the shortest decimal that reads back to the same double,
+/// in scientific notation outside 1e-4..1e16 (a mesh at 1e50 had its volume printed as
+/// 142 digits).
+fn number(x: f64) -> String {
+    let a = x.abs();
+    if a == 0.0 || !a.is_finite() || (1e-4..1e16).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 mod build;
 mod convert;
 mod cut;
