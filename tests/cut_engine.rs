@@ -149,27 +149,41 @@ fn sequences_of_cuts_crossing_earlier_cuts() {
     }
 }
 
+/// Every phase forced onto all cores (threshold 0) and kept on one (`usize::MAX`): the
+/// same meshes, cut after cut, with the engine's default snapping and with almost none (a
+/// cut then snaps no vertex: a parallel pass over no vertices panicked once).
 #[test]
 fn one_thread_and_all_cores_give_the_same_mesh() {
     let input = mesh("fandisk");
     let mut rng = Rng(4242);
-    for kind in [Kind::Through, Kind::Partial, Kind::Vertices] {
-        let polygon = random_polygon(input, kind, &mut rng);
-        let run = |threshold: usize| {
-            let opts = CutOptions::DEFAULT.with_parallel_threshold(threshold);
-            let mut c = Cutter::new(input.clone(), opts).expect("options");
-            let r = c.cut(&polygon).expect("cut");
-            (c.into_mesh(), r.origins, r.splits)
+    for options in [CutOptions::DEFAULT, CutOptions::SCALPEL] {
+        let cutter = |threshold: usize| {
+            Cutter::new(input.clone(), options.with_parallel_threshold(threshold)).expect("options")
         };
-        let (seq, o1, s1) = run(usize::MAX);
-        let (par, o2, s2) = run(0);
-        assert!(
-            seq == par,
-            "{kind:?}: meshes differ between one and all cores"
-        );
-        assert_eq!(o1, o2);
-        assert_eq!(s1, s2);
-        assert_valid(&par, "parallel cut");
+        let (mut seq, mut par) = (cutter(usize::MAX), cutter(0));
+        let kinds = [Kind::Through, Kind::Partial, Kind::Vertices];
+        for step in 0..12 {
+            let kind = if step < kinds.len() {
+                kinds[step]
+            } else {
+                Kind::draw(&mut rng)
+            };
+            let polygon = random_polygon(seq.mesh(), kind, &mut rng);
+            let (a, b) = (seq.cut(&polygon), par.cut(&polygon));
+            match (a, b) {
+                (Ok(a), Ok(b)) => {
+                    assert_eq!(a.origins, b.origins, "cut {step} ({kind:?})");
+                    assert_eq!(a.splits, b.splits, "cut {step} ({kind:?})");
+                }
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string()),
+                (a, b) => panic!("cut {step} ({kind:?}): {:?} and {:?}", a.err(), b.err()),
+            }
+            assert!(
+                seq.mesh() == par.mesh(),
+                "cut {step} ({kind:?}): meshes differ between one and all cores"
+            );
+        }
+        assert_valid(par.mesh(), "parallel cuts");
     }
 }
 

@@ -696,8 +696,10 @@ impl Cutter {
                         )
                     };
                 // Each vertex is planned from its own star: in chunks on both cores when
-                // there are enough, concatenated in vertex order (the same plans).
-                let update = if par(PLAN_WEIGHT * examine.len()) {
+                // there are enough, concatenated in vertex order (the same plans). None
+                // at all (a parallel threshold of 0, a cut snapping no vertex) is planned
+                // here: chunks of zero vertices would panic.
+                let update = if !examine.is_empty() && par(PLAN_WEIGHT * examine.len()) {
                     use rayon::prelude::*;
                     let parts: Vec<Copies> = examine
                         .par_chunks(examine.len().div_ceil(PLAN_CHUNKS))
