@@ -96,6 +96,12 @@
 #define MTCUT_SWEEP_MAX_POINTS 6
 
 /**
+ * The most corners a cutting polygon may have (more are refused with
+ * `MTCUT_STATUS_INVALID_ARGUMENT`: checking a polygon compares every pair of corners).
+ */
+#define MTCUT_POLYGON_MAX_POINTS 4096
+
+/**
  * An extraction kept up to date incrementally (opaque): moving its focus or thresholds
  * touches only the fragments whose decision changes, and gives exactly the mesh a fresh
  * extraction would. Made by `mtcut_frontier_new`, released with `mtcut_frontier_free`.
@@ -1089,10 +1095,10 @@ mtcut_status mtcut_cut_options_scalpel(struct mtcut_cut_options *options);
  * it, are at `polygon_xyz` (x, y, z of each), with the default options: every tet the
  * polygon crosses is replaced by tets it does not cross, and the two sides of the cut
  * get their own copies of the vertices on it (the mesh may fall apart into several
- * components: `mtcut_mesh_component_count`). The polygon must have at least 3 distinct,
- * finite corners of magnitude at most 1e50, be planar (within 1e-6 of its diameter) and convex;
- * otherwise `MTCUT_STATUS_INVALID_ARGUMENT` says which corner is wrong and the mesh is
- * unchanged.
+ * components: `mtcut_mesh_component_count`). The polygon must have 3 to
+ * `MTCUT_POLYGON_MAX_POINTS` distinct, finite corners of magnitude at most 1e50, be
+ * planar (within 1e-6 of its diameter) and convex; otherwise
+ * `MTCUT_STATUS_INVALID_ARGUMENT` says which corner is wrong and the mesh is unchanged.
  * Attribute rows of new vertices are interpolated (an extraction's vertex ids,
  * "mt_vertex", are -1 at points the cut makes and copied at duplicated vertices); new
  * tets inherit their parent's rows, and the tet column "mtcut:cut" numbers the cut that

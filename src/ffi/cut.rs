@@ -271,10 +271,10 @@ fn cut_with(
 /// it, are at `polygon_xyz` (x, y, z of each), with the default options: every tet the
 /// polygon crosses is replaced by tets it does not cross, and the two sides of the cut
 /// get their own copies of the vertices on it (the mesh may fall apart into several
-/// components: `mtcut_mesh_component_count`). The polygon must have at least 3 distinct,
-/// finite corners of magnitude at most 1e50, be planar (within 1e-6 of its diameter) and convex;
-/// otherwise `MTCUT_STATUS_INVALID_ARGUMENT` says which corner is wrong and the mesh is
-/// unchanged.
+/// components: `mtcut_mesh_component_count`). The polygon must have 3 to
+/// `MTCUT_POLYGON_MAX_POINTS` distinct, finite corners of magnitude at most 1e50, be
+/// planar (within 1e-6 of its diameter) and convex; otherwise
+/// `MTCUT_STATUS_INVALID_ARGUMENT` says which corner is wrong and the mesh is unchanged.
 /// Attribute rows of new vertices are interpolated (an extraction's vertex ids,
 /// "mt_vertex", are -1 at points the cut makes and copied at duplicated vertices); new
 /// tets inherit their parent's rows, and the tet column "mtcut:cut" numbers the cut that
@@ -410,6 +410,11 @@ fn sweep(start: &[DVec3], end: &[DVec3]) -> FfiResult<Vec<CutPolygon>> {
 /// The most corners the polygons of one sweep have together (two triangles), for the
 /// output of `mtcut_scalpel_sweep_polygons`.
 pub const MTCUT_SWEEP_MAX_POINTS: usize = 6;
+
+/// The most corners a cutting polygon may have (more are refused with
+/// `MTCUT_STATUS_INVALID_ARGUMENT`: checking a polygon compares every pair of corners).
+pub const MTCUT_POLYGON_MAX_POINTS: usize = 4096;
+const _: () = assert!(MTCUT_POLYGON_MAX_POINTS == crate::geom::MAX_POLYGON_POINTS);
 
 /// The planar convex polygons a straight blade sweeps in one time step, in the order to
 /// cut them: what `mtcut_mesh_scalpel_sweep` cuts, and what a host moving a scalpel

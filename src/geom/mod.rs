@@ -15,7 +15,8 @@ mod tolerance;
 
 pub use plane::Plane;
 pub use polygon::{
-    CutPolygon, PLANE_SNAP, PLANE_SNAP_ANGLE, PolygonError, SWEEP_PLANARITY, scalpel_sweep,
+    CutPolygon, MAX_POLYGON_POINTS, PLANE_SNAP, PLANE_SNAP_ANGLE, PolygonError, SWEEP_PLANARITY,
+    scalpel_sweep,
 };
 pub(crate) use polygon::{check_points, lies_in_plane, snap_to_plane};
 pub use predicates::{

@@ -17,6 +17,11 @@ use glam::DVec3;
 pub enum PolygonError {
     #[error("a cutting polygon needs at least 3 points, got {count}")]
     TooFewPoints { count: usize },
+    #[error(
+        "a cutting polygon has at most {} points, got {count}: give fewer corners",
+        MAX_POLYGON_POINTS
+    )]
+    TooManyPoints { count: usize },
     #[error("point {index} has a NaN or infinite coordinate")]
     NonFinite { index: usize },
     #[error(
@@ -66,6 +71,12 @@ pub struct CutPolygon {
     planarity: f64,
 }
 
+/// The most corners a cutting polygon may have. Checking a polygon compares every pair of
+/// corners (its diameter, repeated corners, the widest triangle for its plane): 40 ms at
+/// this size, where 30,000 corners took 2 s and a million would take most of an hour. A
+/// scalpel's sweep has 3 or 4; a disk drawn with a few hundred is round to the eye.
+pub const MAX_POLYGON_POINTS: usize = 4096;
+
 impl CutPolygon {
     /// The planarity tolerance [`new`](Self::new) uses: points within 1e-6 × diameter of the
     /// polygon's plane. Exact inputs pass; coordinates typed with six or more significant
@@ -79,7 +90,8 @@ impl CutPolygon {
         Self::with_tolerance(points, Self::DEFAULT_PLANARITY)
     }
 
-    /// A polygon from its corners in order, checked: at least 3 finite, distinct points,
+    /// A polygon from its corners in order, checked: at least 3 (at most
+    /// [`MAX_POLYGON_POINTS`]) finite, distinct points,
     /// non-zero area, every point within `planarity × diameter` of the plane, convex and
     /// winding once. The positive side of its plane is the one its right-hand normal
     /// (corners counter-clockwise) points to.
@@ -90,6 +102,9 @@ impl CutPolygon {
         let n = points.len();
         if n < 3 {
             return Err(PolygonError::TooFewPoints { count: n });
+        }
+        if n > MAX_POLYGON_POINTS {
+            return Err(PolygonError::TooManyPoints { count: n });
         }
         check_points(points)?;
         for i in 0..n {
@@ -574,6 +589,22 @@ mod tests {
         assert_eq!(
             CutPolygon::new(&s[..2]),
             Err(PolygonError::TooFewPoints { count: 2 })
+        );
+        // A disk of as many corners as allowed, and one more.
+        let disk = |n: usize| -> Vec<DVec3> {
+            (0..n)
+                .map(|k| {
+                    let a = std::f64::consts::TAU * k as f64 / n as f64;
+                    DVec3::new(a.cos(), a.sin(), 0.0)
+                })
+                .collect()
+        };
+        assert!(CutPolygon::new(&disk(MAX_POLYGON_POINTS)).is_ok());
+        let e = CutPolygon::new(&disk(MAX_POLYGON_POINTS + 1)).unwrap_err();
+        assert_eq!(e, PolygonError::TooManyPoints { count: 4097 });
+        assert!(
+            e.to_string().contains("at most 4096 points, got 4097"),
+            "{e}"
         );
         let mut nan = s.clone();
         nan[2].y = f64::NAN;
