@@ -554,3 +554,31 @@ fn closing_an_edit_checks_the_vertex_ids_it_wrote() {
     open.written_tets = Some(vec![10]);
     assert!(open.close().unwrap() == *mt);
 }
+
+/// A vertex of very high valence (the apex and the top of a cone of 2,000 tets around
+/// its axis, as a structured cylindrical grid has on its axis): each collapse of the apex
+/// is tried onto its nearest neighbours only, so building takes about a second, not a
+/// minute (it grew with the cube of the valence), and the MT is valid.
+#[test]
+fn a_cone_of_many_tets_is_simplified() {
+    let n = 2000;
+    let mut positions = vec![DVec3::ZERO, DVec3::new(0.0, 0.0, 1.0)];
+    positions.extend((0..n).map(|i| {
+        let a = std::f64::consts::TAU * i as f64 / n as f64;
+        DVec3::new(a.cos(), a.sin(), 0.5)
+    }));
+    let ring = |i: usize| 2 + (i % n) as u32;
+    let tets = (0..n).map(|i| [0, 1, ring(i), ring(i + 1)]).collect();
+    let (mesh, _) = TetMesh::from_arrays(positions, tets).expect("cone");
+    let (mt, _) = Mt::build(&mesh, &BuildOptions::DEFAULT).expect("build");
+    assert!(mt.nb_fragments() > n / 2, "{} fragments", mt.nb_fragments());
+    let report = mt.validate();
+    assert!(report.is_valid(), "{report}");
+    let coarse = mt.extract(&ExtractOptions::COARSEST).expect("coarsest");
+    assert!(
+        coarse.mesh.nb_tets() < n / 10,
+        "{} tets",
+        coarse.mesh.nb_tets()
+    );
+    assert!(coarse.mesh.validate().is_valid());
+}

@@ -21,6 +21,14 @@ use crate::mt::error::{TetError, TetSample, mean_ratio_cubed};
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
 
+/// The nearest neighbours a vertex's collapse is tried onto. Each try reads the vertex's
+/// whole star, so a vertex of valence V costs V² per evaluation, and it is evaluated
+/// again after each collapse around it: the apex of a cone of 2,000 tets took a minute to
+/// simplify, of 5,000 most of an hour. The shared meshes and their million-tet versions
+/// never give a vertex more than 63 neighbours during simplification, so their MTs are
+/// the same with this bound.
+const MAX_TARGETS: usize = 128;
+
 /// A queued collapse of `v` onto `w`, valid while neither vertex's star has changed.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Candidate {
@@ -317,6 +325,7 @@ impl<E: TetError + ?Sized> Simplifier<'_, E> {
         }
         s.order
             .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        s.order.truncate(MAX_TARGETS);
         // Boundary vertices are checked at once when the metric's priority depends on the
         // boundary deviation (which only the check measures).
         let ranked_before_check = self.class[v as usize] == VertexClass::Interior
