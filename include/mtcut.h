@@ -766,11 +766,11 @@ uint32_t mtcut_version_patch(void);
 /**
  * Makes a mesh from flat arrays: `xyz` holds `3 x n_vertices` coordinates (x, y, z of
  * vertex 0, then of vertex 1...), `tets` holds `4 x n_tets` 0-based vertex indices. The
- * mesh is checked: coordinates finite and of magnitude at most 1e50 (a bounding-box diagonal of at
- * least 1e-50), indices in range, four distinct vertices per tet, no flat tet, every
- * face shared by at most two tets with opposite orientations, a manifold boundary
- * without hanging vertices; otherwise `MTCUT_STATUS_INVALID_MESH`
- * with the first culprit in the message. Negatively oriented tets are re-oriented (their
+ * mesh is checked: coordinates finite and of magnitude at most 1e50 (a bounding-box
+ * diagonal of at least 1e-50), indices in range, four distinct vertices per tet, no flat
+ * tet, every face shared by at most two tets with opposite orientations, a manifold
+ * boundary without hanging vertices; otherwise `MTCUT_STATUS_INVALID_MESH` with the
+ * first culprit in the message. Negatively oriented tets are re-oriented (their
  * last two vertices swapped: `mtcut_mesh_copy_tets` shows it). Vertices used by no tet
  * are kept. The arrays are copied; the caller keeps them. On success `*out` receives a
  * new mesh to free with `mtcut_mesh_free`; on failure it is not written.
@@ -865,8 +865,8 @@ mtcut_status mtcut_mesh_copy_tets(const struct mtcut_mesh *mesh,
 /**
  * Moves the vertices to `xyz` (`3 x n_vertices` coordinates; `n_vertices` must equal
  * the mesh's vertex count): the deformed configuration a simulation computed. The
- * coordinates must be finite and of magnitude at most 1e50; anything else is refused and the mesh
- * left unchanged.
+ * coordinates must be finite and of magnitude at most 1e50; anything else is refused
+ * and the mesh left unchanged.
  * Moving vertices can invert tets: `mtcut_mesh_validate` reports it, and the next cut
  * refuses such a mesh (`MTCUT_STATUS_INVALID_MESH`, naming the tet; the mesh is kept
  * as it is, so other positions can be set).
@@ -1167,8 +1167,8 @@ mtcut_status mtcut_mesh_scalpel_sweep(struct mtcut_mesh *mesh,
  * `3 x MTCUT_SWEEP_MAX_POINTS` doubles) receives the corners, polygon after polygon, in
  * order around each; `point_counts` (room for 2) the number of corners of each;
  * `*n_polygons` 1 or 2. A blade that does not move, a sweep folding over itself or a
- * coordinate that is not finite or larger in magnitude than 1e50 gives `MTCUT_STATUS_INVALID_ARGUMENT`,
- * nothing written.
+ * coordinate that is not finite or larger in magnitude than 1e50 gives
+ * `MTCUT_STATUS_INVALID_ARGUMENT`, nothing written.
  *
  * # Safety
  * `start_xyz` and `end_xyz` readable for 6 doubles each; `polygons_xyz` writable for
@@ -1544,8 +1544,9 @@ mtcut_status mtcut_live_copy_mt_vertex_ids(const struct mtcut_live *live,
 /**
  * Sets the current (deformed) position of every current vertex: `xyz` holds
  * `n_vertices` points, exactly `mtcut_live_vertex_count`. A wrong count, a coordinate
- * that is not finite or larger in magnitude than 1e50, or a tet the positions would invert or flatten
- * gives `MTCUT_STATUS_INVALID_ARGUMENT` naming it, and nothing changes.
+ * that is not finite or larger in magnitude than 1e50, or a tet the positions would
+ * invert or flatten gives `MTCUT_STATUS_INVALID_ARGUMENT` naming it, and nothing
+ * changes.
  *
  * # Safety
  * `live` must be a live handle used by no other thread; `xyz` readable for

@@ -1149,14 +1149,8 @@ pub(crate) fn check_positions(positions: &[DVec3], expected: usize) -> Result<()
             expected,
         });
     }
-    if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
-        return Err(CutError::NonFinitePosition { vertex });
-    }
-    match positions
-        .iter()
-        .enumerate()
-        .find_map(|(v, p)| crate::geom::coordinate_out_of_range(*p).map(|x| (v, x)))
-    {
+    match crate::geom::first_unsupported(positions) {
+        Some((vertex, value)) if !value.is_finite() => Err(CutError::NonFinitePosition { vertex }),
         Some((vertex, value)) => Err(CutError::PositionOutOfRange { vertex, value }),
         None => Ok(()),
     }

@@ -197,11 +197,7 @@ pub enum CutError {
     PositionCount { count: usize, expected: usize },
     #[error("position of vertex {vertex} is not finite")]
     NonFinitePosition { vertex: usize },
-    #[error(
-        "position of vertex {vertex} has coordinate {value:e}, larger in magnitude than the \
-         {:e} mtcut supports",
-        crate::geom::MAX_COORDINATE
-    )]
+    #[error("position of vertex {vertex} {}", crate::geom::out_of_range_text(*value))]
     PositionOutOfRange { vertex: usize, value: f64 },
     #[error("tet {tet} would be inverted or flat at the new positions")]
     InvertedTet { tet: usize },

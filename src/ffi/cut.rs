@@ -427,8 +427,8 @@ const _: () = assert!(MTCUT_POLYGON_MAX_POINTS == crate::geom::MAX_POLYGON_POINT
 /// `3 x MTCUT_SWEEP_MAX_POINTS` doubles) receives the corners, polygon after polygon, in
 /// order around each; `point_counts` (room for 2) the number of corners of each;
 /// `*n_polygons` 1 or 2. A blade that does not move, a sweep folding over itself or a
-/// coordinate that is not finite or larger in magnitude than 1e50 gives `MTCUT_STATUS_INVALID_ARGUMENT`,
-/// nothing written.
+/// coordinate that is not finite or larger in magnitude than 1e50 gives
+/// `MTCUT_STATUS_INVALID_ARGUMENT`, nothing written.
 ///
 /// # Safety
 /// `start_xyz` and `end_xyz` readable for 6 doubles each; `polygons_xyz` writable for

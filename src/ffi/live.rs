@@ -229,8 +229,9 @@ pub unsafe extern "C" fn mtcut_live_copy_mt_vertex_ids(
 
 /// Sets the current (deformed) position of every current vertex: `xyz` holds
 /// `n_vertices` points, exactly `mtcut_live_vertex_count`. A wrong count, a coordinate
-/// that is not finite or larger in magnitude than 1e50, or a tet the positions would invert or flatten
-/// gives `MTCUT_STATUS_INVALID_ARGUMENT` naming it, and nothing changes.
+/// that is not finite or larger in magnitude than 1e50, or a tet the positions would
+/// invert or flatten gives `MTCUT_STATUS_INVALID_ARGUMENT` naming it, and nothing
+/// changes.
 ///
 /// # Safety
 /// `live` must be a live handle used by no other thread; `xyz` readable for

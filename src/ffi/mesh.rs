@@ -4,7 +4,7 @@
 use super::guard::{Out, OutSlice, c_str, deref, deref_mut, run, run_count, slice};
 use super::status::{Failure, FfiResult, mtcut_status};
 use crate::cut::{CrackTips, CutError, CutOptions, Cutter};
-use crate::geom::{DVec3, MAX_COORDINATE};
+use crate::geom::{DVec3, out_of_range_text, supported};
 use crate::mesh::TetMesh;
 use std::ffi::{CStr, c_char};
 use std::path::PathBuf;
@@ -184,11 +184,11 @@ pub(crate) fn flat_len(n: usize, k: usize, what: &str) -> FfiResult<usize> {
 
 /// Makes a mesh from flat arrays: `xyz` holds `3 x n_vertices` coordinates (x, y, z of
 /// vertex 0, then of vertex 1...), `tets` holds `4 x n_tets` 0-based vertex indices. The
-/// mesh is checked: coordinates finite and of magnitude at most 1e50 (a bounding-box diagonal of at
-/// least 1e-50), indices in range, four distinct vertices per tet, no flat tet, every
-/// face shared by at most two tets with opposite orientations, a manifold boundary
-/// without hanging vertices; otherwise `MTCUT_STATUS_INVALID_MESH`
-/// with the first culprit in the message. Negatively oriented tets are re-oriented (their
+/// mesh is checked: coordinates finite and of magnitude at most 1e50 (a bounding-box
+/// diagonal of at least 1e-50), indices in range, four distinct vertices per tet, no flat
+/// tet, every face shared by at most two tets with opposite orientations, a manifold
+/// boundary without hanging vertices; otherwise `MTCUT_STATUS_INVALID_MESH` with the
+/// first culprit in the message. Negatively oriented tets are re-oriented (their
 /// last two vertices swapped: `mtcut_mesh_copy_tets` shows it). Vertices used by no tet
 /// are kept. The arrays are copied; the caller keeps them. On success `*out` receives a
 /// new mesh to free with `mtcut_mesh_free`; on failure it is not written.
@@ -370,8 +370,8 @@ pub unsafe extern "C" fn mtcut_mesh_copy_tets(
 
 /// Moves the vertices to `xyz` (`3 x n_vertices` coordinates; `n_vertices` must equal
 /// the mesh's vertex count): the deformed configuration a simulation computed. The
-/// coordinates must be finite and of magnitude at most 1e50; anything else is refused and the mesh
-/// left unchanged.
+/// coordinates must be finite and of magnitude at most 1e50; anything else is refused
+/// and the mesh left unchanged.
 /// Moving vertices can invert tets: `mtcut_mesh_validate` reports it, and the next cut
 /// refuses such a mesh (`MTCUT_STATUS_INVALID_MESH`, naming the tet; the mesh is kept
 /// as it is, so other positions can be set).
@@ -399,19 +399,12 @@ pub unsafe extern "C" fn mtcut_mesh_set_vertices(
                 mesh.nb_vertices()
             )));
         }
-        if let Some(i) = xyz.iter().position(|c| !c.is_finite()) {
-            return Err(Failure::invalid(format!(
-                "vertex {} has a coordinate that is NaN or infinite",
-                i / 3
-            )));
-        }
-        if let Some(i) = xyz.iter().position(|c| c.abs() > MAX_COORDINATE) {
-            return Err(Failure::invalid(format!(
-                "vertex {} has coordinate {:e}, larger in magnitude than the \
-                 {MAX_COORDINATE:e} mtcut supports",
-                i / 3,
-                xyz[i]
-            )));
+        if let Some(i) = xyz.iter().position(|&c| !supported(c)) {
+            return Err(Failure::invalid(if xyz[i].is_finite() {
+                format!("vertex {} {}", i / 3, out_of_range_text(xyz[i]))
+            } else {
+                format!("vertex {} has a coordinate that is NaN or infinite", i / 3)
+            }));
         }
         for (p, c) in mesh.positions_mut().iter_mut().zip(xyz.chunks_exact(3)) {
             *p = DVec3::new(c[0], c[1], c[2]);

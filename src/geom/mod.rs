@@ -43,6 +43,28 @@ pub fn coordinate_out_of_range(p: DVec3) -> Option<f64> {
     p.to_array().into_iter().find(|c| c.abs() > MAX_COORDINATE)
 }
 
+/// Whether mtcut takes `c` as a coordinate: finite and within ±[`MAX_COORDINATE`].
+pub(crate) fn supported(c: f64) -> bool {
+    c.is_finite() && c.abs() <= MAX_COORDINATE
+}
+
+/// The first of `points` with a coordinate mtcut cannot take, in one pass: its index and
+/// the coordinate (NaN or infinite, or beyond ±[`MAX_COORDINATE`]).
+pub(crate) fn first_unsupported(points: &[DVec3]) -> Option<(usize, f64)> {
+    points.iter().enumerate().find_map(|(i, p)| {
+        let bad = p.to_array().into_iter().find(|&c| !supported(c))?;
+        Some((i, bad))
+    })
+}
+
+/// How every message words a coordinate beyond the range: "has coordinate 1e60, larger in
+/// magnitude than the 1e50 mtcut supports".
+pub(crate) fn out_of_range_text(value: f64) -> String {
+    format!(
+        "has coordinate {value:e}, larger in magnitude than the {MAX_COORDINATE:e} mtcut supports"
+    )
+}
+
 /// An axis-aligned bounding box.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {

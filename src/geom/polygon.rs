@@ -24,11 +24,7 @@ pub enum PolygonError {
     TooManyPoints { count: usize },
     #[error("point {index} has a NaN or infinite coordinate")]
     NonFinite { index: usize },
-    #[error(
-        "point {index} has coordinate {value:e}, larger in magnitude than the {:e} mtcut \
-         supports",
-        super::MAX_COORDINATE
-    )]
+    #[error("point {index} {}", super::out_of_range_text(*value))]
     OutOfRange { index: usize, value: f64 },
     #[error("points {first} and {second} are the same point: give each corner once")]
     RepeatedPoint { first: usize, second: usize },
@@ -470,22 +466,16 @@ fn in_plane_rounding(polygon: &CutPolygon) -> f64 {
     1e-9 * (b.min.abs().max(b.max.abs()).max_element() + polygon.diameter())
 }
 
-/// The polygons swept by a straight blade moving during one time step: the segment
 /// Every point finite and within ±[`MAX_COORDINATE`](super::MAX_COORDINATE).
 pub(crate) fn check_points(points: &[DVec3]) -> Result<(), PolygonError> {
-    if let Some(index) = points.iter().position(|p| !p.is_finite()) {
-        return Err(PolygonError::NonFinite { index });
-    }
-    match points
-        .iter()
-        .enumerate()
-        .find_map(|(i, p)| super::coordinate_out_of_range(*p).map(|v| (i, v)))
-    {
+    match super::first_unsupported(points) {
+        Some((index, value)) if !value.is_finite() => Err(PolygonError::NonFinite { index }),
         Some((index, value)) => Err(PolygonError::OutOfRange { index, value }),
         None => Ok(()),
     }
 }
 
+/// The polygons swept by a straight blade moving during one time step: the segment
 /// `start[0]`–`start[1]` at t0 and `end[0]`–`end[1]` at t1 (corresponding ends). One
 /// quadrilateral when it is planar (within `planarity` of its size) and convex; otherwise
 /// two triangles (along the shorter diagonal, or from the reflex corner of a planar

@@ -1,6 +1,6 @@
 //! The one error type of the file layer: which file, where in it, and what is wrong.
 
-use crate::geom::MAX_COORDINATE;
+use crate::geom::out_of_range_text;
 use crate::mesh::{MeshError, Numbering};
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -90,9 +90,9 @@ pub(crate) fn invalid_mesh(
             )
         }
         MeshError::CoordinateOutOfRange { vertex, value } => format!(
-            "{vw} {} has coordinate {value:e}, larger in magnitude than the \
-             {MAX_COORDINATE:e} mtcut supports: rescale the mesh",
-            v(*vertex as u64)
+            "{vw} {} {}: rescale the mesh",
+            v(*vertex as u64),
+            out_of_range_text(*value)
         ),
         MeshError::Invalid(report) => format!(
             "{report}; numbered as in the file (vertices are its {vws}, tets its {tws}{tet_note})"

@@ -9,7 +9,7 @@
 //! tetrahedra) are rejected: mtcut meshes are linear tetrahedra only.
 
 use super::error::{FileTerms, IoError, invalid_mesh};
-use crate::geom::{DVec3, MAX_COORDINATE, coordinate_out_of_range};
+use crate::geom::{DVec3, coordinate_out_of_range, out_of_range_text};
 use crate::mesh::{Attribute, ImportReport, Numbering, TetMesh};
 use std::path::Path;
 
@@ -176,9 +176,9 @@ pub fn parse_medit(text: &str, path: &Path) -> Result<(TetMesh, ImportReport), I
                         return Err(at(
                             first_line,
                             format!(
-                                "vertex {} has coordinate {value:e}, larger in magnitude than the \
-                                 {MAX_COORDINATE:e} mtcut supports: rescale the mesh",
-                                i + 1
+                                "vertex {} {}: rescale the mesh",
+                                i + 1,
+                                out_of_range_text(value)
                             ),
                         ));
                     }

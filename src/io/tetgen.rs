@@ -7,7 +7,7 @@
 //! (`attribute_K`, `boundary_marker`), element attributes cell data (`attribute_K`).
 
 use super::error::{FileTerms, IoError, invalid_mesh};
-use crate::geom::{DVec3, MAX_COORDINATE, coordinate_out_of_range};
+use crate::geom::{DVec3, coordinate_out_of_range, out_of_range_text};
 use crate::mesh::{Attribute, ImportReport, Numbering, TetMesh};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -168,9 +168,9 @@ pub fn parse_tetgen(
                 &node_path,
                 ln,
                 format!(
-                    "node {} has coordinate {value:e}, larger in magnitude than the \
-                     {MAX_COORDINATE:e} mtcut supports: rescale the mesh",
-                    id[0]
+                    "node {} {}: rescale the mesh",
+                    id[0],
+                    out_of_range_text(value)
                 ),
             ));
         }

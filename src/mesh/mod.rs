@@ -24,7 +24,7 @@ pub(crate) use validate::Numbering;
 pub use validate::{Severity, ValidationReport, Violation, ViolationKind};
 
 use crate::geom::{
-    Aabb, DVec3, MIN_MESH_SIZE, Sign, coordinate_out_of_range, orient3d, signed_volume_inexact,
+    Aabb, DVec3, MIN_MESH_SIZE, Sign, first_unsupported, orient3d, signed_volume_inexact,
 };
 use rayon::prelude::*;
 
@@ -73,9 +73,8 @@ pub enum MeshError {
     #[error("vertex {vertex} has a coordinate that is NaN or infinite")]
     NonFiniteCoordinate { vertex: usize },
     #[error(
-        "vertex {vertex} has coordinate {value:e}, larger in magnitude than the {:e} mtcut \
-         supports: rescale the mesh (to metres or millimetres, say)",
-        crate::geom::MAX_COORDINATE
+        "vertex {vertex} {}: rescale the mesh (to metres or millimetres, say)",
+        crate::geom::out_of_range_text(*value)
     )]
     CoordinateOutOfRange { vertex: usize, value: f64 },
     #[error(
@@ -126,15 +125,15 @@ impl TetMesh {
         if positions.len() >= u32::MAX as usize || tets.len() >= u32::MAX as usize {
             return Err(MeshError::TooLarge { max: u32::MAX - 1 });
         }
-        if let Some(vertex) = positions.par_iter().position_first(|p| !p.is_finite()) {
-            return Err(MeshError::NonFiniteCoordinate { vertex });
-        }
-        if let Some(vertex) = positions
-            .par_iter()
-            .position_first(|p| coordinate_out_of_range(*p).is_some())
-        {
-            let value = coordinate_out_of_range(positions[vertex]).unwrap_or(f64::INFINITY);
-            return Err(MeshError::CoordinateOutOfRange { vertex, value });
+        // One parallel pass finds the first vertex with a coordinate mtcut cannot take.
+        let unsupported = |p: &DVec3| first_unsupported(std::slice::from_ref(p)).is_some();
+        if let Some(vertex) = positions.par_iter().position_first(unsupported) {
+            let value = first_unsupported(&positions[vertex..=vertex]).map_or(f64::NAN, |b| b.1);
+            return Err(if value.is_finite() {
+                MeshError::CoordinateOutOfRange { vertex, value }
+            } else {
+                MeshError::NonFiniteCoordinate { vertex }
+            });
         }
         let diagonal = Aabb::from_points(&positions).diagonal();
         if diagonal < MIN_MESH_SIZE {
