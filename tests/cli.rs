@@ -379,3 +379,92 @@ fn a_closed_output_pipe_is_no_panic() {
         assert!(o.status.success(), "{args:?}: {:?} {err}", o.status);
     }
 }
+
+/// Runs `mtcut args` under a file-size limit of `kib` KiB (`ulimit -f` in bash).
+fn mtcut_limited(kib: u64, args: &[&str]) -> std::process::Output {
+    std::process::Command::new("bash")
+        .arg("-c")
+        .arg(format!("ulimit -f {kib} && exec \"$0\" \"$@\""))
+        .arg(env!("CARGO_BIN_EXE_mtcut"))
+        .args(args)
+        .output()
+        .expect("bash runs")
+}
+
+/// A write that fails part way (here past a file-size limit; a full disk alike) is
+/// reported naming the file, and the files it was to replace are kept as they were: a
+/// model cut in place, a .vtu, and both files of a TetGen pair when the second fails.
+#[test]
+fn a_failed_write_keeps_the_files_it_was_replacing() {
+    let dir = scratch("failed write");
+    let s = |p: &Path| p.to_str().unwrap().to_string();
+    let read = |p: &Path| std::fs::read(p).unwrap();
+    let leftovers = || {
+        std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.contains("tmp"))
+            .collect::<Vec<_>>()
+    };
+    let check = |o: std::process::Output, path: &Path| {
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        assert!(err.contains(&s(path)), "{err}");
+        assert!(err.contains("File too large"), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(leftovers().is_empty(), "{:?}", leftovers());
+    };
+    let (small, large) = (s(&data("pinion-coarse.node")), s(&data("liver.node")));
+
+    // A model cut and written over itself.
+    let model = dir.join("model.mt");
+    let o = mtcut(&["build", &small, "-o", &s(&model)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let before = read(&model);
+    let polygon = "-100,-100,0.1;100,-100,0.1;100,100,0.1;-100,100,0.1";
+    let limit = before.len() as u64 / 1024;
+    let args = ["cut", &s(&model), "--polygon", polygon, "-o", &s(&model)];
+    check(mtcut_limited(limit, &args), &model);
+    assert!(read(&model) == before, "the model was changed");
+    // Without the limit the same command replaces it.
+    let o = mtcut(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(read(&model) != before);
+
+    // A .vtu replaced by a larger one.
+    let vtu = dir.join("mesh.vtu");
+    let o = mtcut(&["convert", &small, "-o", &s(&vtu)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let before = read(&vtu);
+    let limit = before.len() as u64 / 1024 + 1;
+    check(
+        mtcut_limited(limit, &["convert", &large, "-o", &s(&vtu)]),
+        &vtu,
+    );
+    assert!(read(&vtu) == before, "the .vtu was changed");
+
+    // A TetGen pair whose .node fits under the limit and whose .ele does not.
+    let sizes = dir.join("sizes.node");
+    let o = mtcut(&["convert", &large, "-o", &s(&sizes)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let node_len = std::fs::metadata(&sizes).unwrap().len();
+    let ele_len = std::fs::metadata(sizes.with_extension("ele"))
+        .unwrap()
+        .len();
+    assert!(node_len + 4096 < ele_len, "{node_len} {ele_len}");
+    let pair = dir.join("pair.node");
+    let o = mtcut(&["convert", &small, "-o", &s(&pair)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (node, ele) = (read(&pair), read(&pair.with_extension("ele")));
+    let limit = (node_len + ele_len) / 2 / 1024;
+    check(
+        mtcut_limited(limit, &["convert", &large, "-o", &s(&pair)]),
+        &pair.with_extension("ele"),
+    );
+    assert!(read(&pair) == node, "the .node was replaced");
+    assert!(
+        read(&pair.with_extension("ele")) == ele,
+        "the .ele was changed"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -9,12 +9,14 @@
 mod error;
 mod medit;
 mod pvd;
+mod replace;
 mod tetgen;
 mod vtu;
 
 pub use error::{IoError, IoErrorKind};
 pub use medit::{MEDIT_REF, parse_medit, read_medit};
 pub use pvd::{PvdEntry, write_pvd};
+pub(crate) use replace::write_files;
 pub use tetgen::{parse_tetgen, read_tetgen, write_tetgen};
 pub use vtu::{
     VtuCompression, VtuEncoding, VtuOptions, encode_vtu, parse_vtu, read_vtu, write_vtu,

@@ -55,5 +55,5 @@ pub fn write_pvd(path: &Path, entries: &[PvdEntry]) -> Result<(), IoError> {
         );
     }
     x.push_str("  </Collection>\n</VTKFile>\n");
-    std::fs::write(path, x).map_err(|e| IoError::new(path, e))
+    crate::io::write_files(&[(path, x.as_bytes())]).map_err(|(_, e)| IoError::new(path, e))
 }

@@ -300,34 +300,37 @@ pub fn write_tetgen(path: &Path, mesh: &TetMesh) -> Result<(), IoError> {
     let scalar = |a: &&Attribute| a.components == 1;
     let pattrs: Vec<&Attribute> = mesh.point_data.iter().filter(scalar).collect();
     let cattrs: Vec<&Attribute> = mesh.cell_data.iter().filter(scalar).collect();
-    let write = |p: &Path, body: &dyn Fn(&mut dyn Write) -> std::io::Result<()>| {
-        let file = std::fs::File::create(p).map_err(|e| IoError::new(p, e))?;
-        let mut w = std::io::BufWriter::new(file);
-        body(&mut w)
-            .and_then(|_| w.flush())
-            .map_err(|e| IoError::new(p, e))
-    };
-    write(&node_path, &|w| {
-        writeln!(w, "{} 3 {} 0", mesh.nb_vertices(), pattrs.len())?;
-        for (i, p) in mesh.positions().iter().enumerate() {
-            // `{:?}` prints the shortest decimal that reads back to the same double.
-            write!(w, "{i} {:?} {:?} {:?}", p.x, p.y, p.z)?;
-            for a in &pattrs {
-                write!(w, " {:?}", a.values[i])?;
-            }
-            writeln!(w)?;
+    let (mut node, mut ele) = (Vec::new(), Vec::new());
+    // Into memory first, so that both files are replaced together: never a new .node
+    // beside an old .ele.
+    write_nodes(&mut node, mesh, &pattrs)
+        .and_then(|()| write_elements(&mut ele, mesh, &cattrs))
+        .expect("writing into memory does not fail");
+    let files = [(&*node_path, &node[..]), (&*ele_path, &ele[..])];
+    crate::io::write_files(&files).map_err(|(i, e)| IoError::new(files[i].0, e))
+}
+
+fn write_nodes(w: &mut Vec<u8>, mesh: &TetMesh, attrs: &[&Attribute]) -> std::io::Result<()> {
+    writeln!(w, "{} 3 {} 0", mesh.nb_vertices(), attrs.len())?;
+    for (i, p) in mesh.positions().iter().enumerate() {
+        // `{:?}` prints the shortest decimal that reads back to the same double.
+        write!(w, "{i} {:?} {:?} {:?}", p.x, p.y, p.z)?;
+        for a in attrs {
+            write!(w, " {:?}", a.values[i])?;
         }
-        writeln!(w, "# written by mtcut {}", env!("CARGO_PKG_VERSION"))
-    })?;
-    write(&ele_path, &|w| {
-        writeln!(w, "{} 4 {}", mesh.nb_tets(), cattrs.len())?;
-        for (i, t) in mesh.tets().iter().enumerate() {
-            write!(w, "{i} {} {} {} {}", t[0], t[1], t[2], t[3])?;
-            for a in &cattrs {
-                write!(w, " {:?}", a.values[i])?;
-            }
-            writeln!(w)?;
+        writeln!(w)?;
+    }
+    writeln!(w, "# written by mtcut {}", env!("CARGO_PKG_VERSION"))
+}
+
+fn write_elements(w: &mut Vec<u8>, mesh: &TetMesh, attrs: &[&Attribute]) -> std::io::Result<()> {
+    writeln!(w, "{} 4 {}", mesh.nb_tets(), attrs.len())?;
+    for (i, t) in mesh.tets().iter().enumerate() {
+        write!(w, "{i} {} {} {} {}", t[0], t[1], t[2], t[3])?;
+        for a in attrs {
+            write!(w, " {:?}", a.values[i])?;
         }
-        writeln!(w, "# written by mtcut {}", env!("CARGO_PKG_VERSION"))
-    })
+        writeln!(w)?;
+    }
+    writeln!(w, "# written by mtcut {}", env!("CARGO_PKG_VERSION"))
 }

@@ -97,7 +97,7 @@ impl Mt {
     /// Writes the MT to `path` (see the [format](self)).
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), MtFileError> {
         let path = path.as_ref();
-        std::fs::write(path, self.to_bytes()).map_err(|e| MtFileError {
+        crate::io::write_files(&[(path, &self.to_bytes())]).map_err(|(_, e)| MtFileError {
             path: path.to_path_buf(),
             kind: e.into(),
         })

@@ -76,6 +76,13 @@ enum Command {
 pub type CliResult = Result<(), Box<dyn std::error::Error>>;
 
 fn main() -> ExitCode {
+    // Past a file-size limit (`ulimit -f`) a write then fails with "File too large",
+    // reported naming the file, instead of the process being killed by SIGXFSZ; the files
+    // it was replacing are kept either way (the library writes through temporary files).
+    // SAFETY: setting a signal's disposition to SIG_IGN, before any thread is started.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Info(a) => info::run(a),

@@ -225,7 +225,7 @@ fn attribute_array(a: &Attribute) -> Array<'_> {
 pub fn write_vtu(path: &Path, mesh: &TetMesh, options: &VtuOptions) -> Result<(), IoError> {
     let mut out = Vec::new();
     encode_vtu(mesh, options, &mut out).map_err(|e| IoError::malformed(path, e))?;
-    std::fs::write(path, &out).map_err(|e| IoError::new(path, e))
+    crate::io::write_files(&[(path, &out)]).map_err(|(_, e)| IoError::new(path, e))
 }
 
 /// The bytes of a `.vtu` file for `mesh`, appended to `out`.
