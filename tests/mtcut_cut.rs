@@ -474,6 +474,67 @@ fn a_blade_swept_across_the_mt_stays_valid() {
     }
 }
 
+/// A new point can round an ulp beyond the points it combines: here a face point lands at
+/// z = 2 + 4.4e-16 on a grid whose vertices (integers) lie on the steps fragment boxes are
+/// stored in, beyond the box of a fragment whose tets the cut wrote but did not split.
+/// Found through the C ABI: `validate` reported the box as stale after a successful cut.
+#[test]
+fn a_new_point_rounding_past_a_fragments_box_grows_the_box() {
+    use mtcut::geom::DVec3;
+    use mtcut::mesh::TetMesh;
+    let n = 6;
+    let corner = [
+        [0, 0, 0],
+        [1, 0, 0],
+        [0, 1, 0],
+        [1, 1, 0],
+        [0, 0, 1],
+        [1, 0, 1],
+        [0, 1, 1],
+        [1, 1, 1],
+    ];
+    let kuhn = [
+        [0, 1, 3, 7],
+        [0, 1, 5, 7],
+        [0, 2, 3, 7],
+        [0, 2, 6, 7],
+        [0, 4, 5, 7],
+        [0, 4, 6, 7],
+    ];
+    let id = |i: usize, j: usize, k: usize| (i + (n + 1) * (j + (n + 1) * k)) as u32;
+    let mut positions = Vec::new();
+    let mut tets = Vec::new();
+    for k in 0..=n {
+        for j in 0..=n {
+            for i in 0..=n {
+                positions.push(DVec3::new(i as f64, j as f64, k as f64));
+                if i < n && j < n && k < n {
+                    for c in kuhn {
+                        tets.push(c.map(|q| {
+                            let d: [usize; 3] = corner[q];
+                            id(i + d[0], j + d[1], k + d[2])
+                        }));
+                    }
+                }
+            }
+        }
+    }
+    let grid = TetMesh::from_arrays(positions, tets).expect("a grid").0;
+    let mt = Mt::build(&grid, &mtcut::mt::BuildOptions::DEFAULT)
+        .expect("built")
+        .0;
+    let triangle = CutPolygon::new(&[
+        DVec3::new(-0.30000000000000004, 3.0, 3.5999999999999996),
+        DVec3::new(0.28346481902525733, 2.9616409468947973, 3.5999999999999996),
+        DVec3::new(0.1784648190252573, 2.9616409468947973, -0.6000000000000001),
+    ])
+    .expect("a triangle");
+    let mut cutter = MtCutter::new(mt, MtCutter::DEFAULT_OPTIONS).expect("options");
+    cutter.cut(&triangle).expect("cut");
+    let report = cutter.mt().validate();
+    assert!(report.is_valid(), "{report}");
+}
+
 /// Three cuts straight through fandisk: the MT should hold one independent component per
 /// piece the cuts leave (the same at the finest and the coarsest level).
 #[test]

@@ -1682,7 +1682,8 @@ impl MtCutter {
         }
         // A tet the tables replaced is tiled by its children (a ghost's triangle by its
         // sub-triangles; crack ghosts lie inside): only a fragment that gave tets to the
-        // fragments split off it has a new box (and those, added, get theirs).
+        // fragments split off it has a new box (and those, added, get theirs), or one
+        // that a new point rounded past (closing checks the tets written).
         open.changed_fragments = Some(split.iter().map(|f| f.0).collect());
         // Every tet written in place was kept for giving back: those and the appended ones
         // are the tets whose vertex ids closing checks.

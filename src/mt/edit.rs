@@ -11,8 +11,9 @@
 //! [`OpenMt::set_creator`] and [`OpenMt::set_destroyer`], which list the tets they
 //! relabel, so the tets not listed are still in the opened MT's arc order and are not
 //! read); an editor that lists the fragments whose box it may have changed
-//! ([`OpenMt::changed_fragments`]) keeps the others' boxes (the cut does; `Mt::validate`
-//! checks every box); and when the arcs come back joining the same fragments as when
+//! ([`OpenMt::changed_fragments`]) keeps the others' boxes, save those that a tet it
+//! wrote reaches out of (a new point rounded past them) — the cut does; `Mt::validate`
+//! checks every box; and when the arcs come back joining the same fragments as when
 //! opened (an edit that adds no fragment and only moves tets into arcs the MT had), the
 //! arcs' ranges are updated from the moved tets alone and the DAG's tables are the opened
 //! MT's (`Mt::validate` derives levels again and compares). Appended vertices and tets need
@@ -432,6 +433,28 @@ impl OpenMt {
             }
             _ => None,
         };
+        // The editor lists the fragments whose tets it moved or split; but a vertex it
+        // added can round an ulp beyond the points it combines (a face point past its
+        // face's box), past the kept box of a fragment it did not list: the tets written
+        // or appended are checked against their fragments' kept boxes (without that list,
+        // every box is derived).
+        let known_boxes = known_boxes.zip(written.as_ref()).map(|(mut k, written)| {
+            let opened = this.opened.sorted.min(nt);
+            let written = written.iter().map(|&t| t as usize).filter(|&t| t < opened);
+            for t in written.chain(opened..nt) {
+                let mut b = crate::geom::Aabb::EMPTY;
+                for v in this.tets[t].iter().filter(|v| **v != GHOST) {
+                    b.grow(this.positions[v.idx()]);
+                }
+                let q = k.frame.enclose(&b);
+                for f in [this.creator[t].idx(), this.destroyer[t].idx()] {
+                    if f < k.boxes.len() && !k.changed[f] && !k.boxes[f].contains(&q) {
+                        k.changed[f] = true;
+                    }
+                }
+            }
+            k
+        });
         let merge = Merge::plan(
             &this.creator,
             &this.destroyer,
