@@ -112,6 +112,12 @@ fn budgets_are_respected_and_grow_monotonically() {
         let plain = mt.extract(&t).unwrap();
         let capped = mt.extract(&t.with_budget(Some(input.nb_tets()))).unwrap();
         assert_eq!(plain.tet_ids, capped.tet_ids);
+        // Budgets past i64 (SIZE_MAX from a C host meaning "no limit") are no limit.
+        for huge in [1usize << 63, usize::MAX] {
+            let x = mt.extract(&t.with_budget(Some(huge))).unwrap();
+            assert!(x.stats.budget_met, "{name}: budget {huge}");
+            assert_eq!(plain.tet_ids, x.tet_ids, "{name}: budget {huge}");
+        }
     }
 }
 

@@ -288,6 +288,9 @@ impl Mt {
                 .then(x.cmp(&y))
         });
         let mut refined = vec![false; nf];
+        // Budgets beyond i64 (a host's SIZE_MAX for "no limit") are no limit: `as` would
+        // wrap them negative.
+        let budget = i64::try_from(budget).unwrap_or(i64::MAX);
         let mut count = 0i64;
         let mut met = true;
         for &f in &order {
@@ -295,8 +298,8 @@ impl Mt {
             let next = count + delta[f];
             if self.kind[f] == FragmentKind::Drain {
                 // The coarsest mesh is the least any extraction gives.
-                met &= next <= budget as i64;
-            } else if next > budget as i64 {
+                met &= next <= budget;
+            } else if next > budget {
                 break;
             }
             refined[f] = true;
