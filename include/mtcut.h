@@ -1274,7 +1274,8 @@ mtcut_status mtcut_mt_validate(const struct mtcut_mt *mt,
 /**
  * Component `k` (from 0; `mtcut_mt_statistics` counts them) of a model that cuts
  * separated into independent models, as a model of its own: `*out` receives a new
- * handle. `MTCUT_STATUS_NOT_FOUND` when `k` is not below the count.
+ * handle. `MTCUT_STATUS_INVALID_ARGUMENT` when `k` is not below the count (as for
+ * `mtcut_mesh_extract_component`).
  *
  * # Safety
  * `mt` must be a live model handle; `out` a writable pointer.

@@ -218,6 +218,13 @@ fn bad_arguments_are_refused_and_change_nothing() {
     let name = "mtcut_live_set_positions";
     let s = unsafe { mtcut_live_set_positions(l.0, xyz.as_ptr(), n - 1) };
     refused(s, MTCUT_STATUS_INVALID_ARGUMENT, name, "positions given");
+    // A count far past the array is refused before it is read.
+    let s = unsafe { mtcut_live_set_positions(l.0, xyz.as_ptr(), 1 << 28) };
+    refused(s, MTCUT_STATUS_INVALID_ARGUMENT, name, "positions given");
+    // Positions inverting every tet (the body mirrored) are a bad argument.
+    let mirrored: Vec<f64> = xyz.iter().map(|x| -x).collect();
+    let s = unsafe { mtcut_live_set_positions(l.0, mirrored.as_ptr(), n) };
+    refused(s, MTCUT_STATUS_INVALID_ARGUMENT, name, "inverted");
     let mut nan = xyz.clone();
     nan[7] = f64::NAN;
     let s = unsafe { mtcut_live_set_positions(l.0, nan.as_ptr(), n) };
@@ -253,6 +260,8 @@ fn bad_arguments_are_refused_and_change_nothing() {
         "mtcut_live_cut",
         "polygon_xyz",
     );
+    let s = unsafe { mtcut_live_cut(l.0, two.as_ptr(), 1 << 40, ptr::null_mut()) };
+    refused(s, MTCUT_STATUS_INVALID_ARGUMENT, "mtcut_live_cut", "4096");
     assert_eq!(unsafe { mtcut_live_pending_cuts(l.0) }, 0);
     let s = unsafe { mtcut_live_process_pending(l.0, 0, -1.0, ptr::null_mut()) };
     refused(

@@ -251,6 +251,52 @@ fn invalid_arrays_are_refused_with_the_culprit() {
     assert!(out.is_null());
 }
 
+/// Counts a mesh or a polygon cannot have are refused before the arrays are read: a
+/// wrong count must neither read past the caller's array nor copy gigabytes (these read
+/// past the end, crashed or aborted on memory before).
+#[test]
+fn counts_are_checked_before_the_arrays_are_read() {
+    let mut out = ptr::null_mut();
+    let s = unsafe {
+        mtcut_mesh_from_arrays(CUBE_XYZ.as_ptr(), 1 << 33, CUBE_TETS.as_ptr(), 6, &mut out)
+    };
+    expect(
+        s,
+        MTCUT_STATUS_INVALID_MESH,
+        "mtcut_mesh_from_arrays",
+        "4294967294",
+    );
+    assert!(out.is_null());
+    let m = cube();
+    let values = [1.0; 8];
+    for components in [10, 1 << 28] {
+        let s = unsafe {
+            mtcut_mesh_set_attribute(
+                m.0,
+                MTCUT_LOCATION_VERTEX,
+                c"t".as_ptr(),
+                values.as_ptr(),
+                8,
+                components,
+            )
+        };
+        expect(
+            s,
+            MTCUT_STATUS_INVALID_ARGUMENT,
+            "mtcut_mesh_set_attribute",
+            "components",
+        );
+    }
+    let triangle = [0.5, -1.0, -1.0, 0.5, 3.0, -1.0, 0.5, -1.0, 3.0];
+    let s = unsafe { mtcut_mesh_cut(m.0, triangle.as_ptr(), 1 << 40, ptr::null_mut()) };
+    expect(s, MTCUT_STATUS_INVALID_ARGUMENT, "mtcut_mesh_cut", "4096");
+    assert_eq!(
+        unsafe { mtcut_mesh_tet_count(m.0) },
+        6,
+        "the cube unchanged"
+    );
+}
+
 #[test]
 fn failed_copies_write_nothing() {
     let m = cube();

@@ -981,7 +981,7 @@ fn a_model_cut_through_becomes_two_models_and_keeps_its_volume() {
     let status = unsafe { mtcut_mt_component(mt.0, 2, &mut out) };
     refused(
         status,
-        MTCUT_STATUS_NOT_FOUND,
+        MTCUT_STATUS_INVALID_ARGUMENT,
         "mtcut_mt_component",
         "has 2",
     );

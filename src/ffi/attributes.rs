@@ -103,24 +103,33 @@ pub unsafe extern "C" fn mtcut_mesh_set_attribute(
 ) -> mtcut_status {
     run("mtcut_mesh_set_attribute", || {
         // SAFETY: the caller's contract, forwarded to the checks.
-        let (mesh, name, values) = unsafe {
+        let (mesh, name) = unsafe {
             (
                 deref_mut(mesh, "mesh")?.mesh_for_attributes(),
                 name_arg(name)?,
-                slice(
-                    values,
-                    flat_len(n_elements, components, "values")?,
-                    "values",
-                )?,
             )
         };
         let (columns, rows) = columns_mut(mesh, location)?;
+        // The counts first: wrong ones must not make the library read past `values`.
+        if !(1..=MTCUT_MAX_COMPONENTS).contains(&components) {
+            return Err(Failure::invalid(format!(
+                "components is {components}; it must be 1 to {MTCUT_MAX_COMPONENTS}"
+            )));
+        }
         if n_elements != rows {
             return Err(Failure::invalid(format!(
                 "n_elements is {n_elements}, the mesh has {rows} {}s",
                 location_name(location)
             )));
         }
+        // SAFETY: the caller's contract, forwarded to the checks.
+        let values = unsafe {
+            slice(
+                values,
+                flat_len(n_elements, components, "values")?,
+                "values",
+            )
+        }?;
         let column = Attribute::new(name, components, values.to_vec()).ok_or_else(|| {
             Failure::invalid(format!(
                 "components is {components}; it must be 1 to {MTCUT_MAX_COMPONENTS}"

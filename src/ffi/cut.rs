@@ -230,6 +230,22 @@ pub(super) fn polygon_failure(e: PolygonError, arg: &str) -> Failure {
     Failure::invalid(format!("argument `{arg}`: {e}"))
 }
 
+/// The `n` corners of a polygon at `xyz`; more than a polygon may have are refused before
+/// anything is read (a wrong count must not make the library read past the caller's array).
+///
+/// # Safety
+/// A non-NULL `xyz` must point to `3 x n` readable doubles.
+pub(super) unsafe fn corners(xyz: *const f64, n: usize, arg: &str) -> FfiResult<Vec<DVec3>> {
+    if n > crate::geom::MAX_POLYGON_POINTS {
+        return Err(polygon_failure(
+            PolygonError::TooManyPoints { count: n },
+            arg,
+        ));
+    }
+    // SAFETY: forwarded contract.
+    unsafe { points(xyz, n, arg) }
+}
+
 /// `n` points of three coordinates at `xyz`.
 ///
 /// # Safety
@@ -331,7 +347,7 @@ unsafe fn cut_polygon(
     let (mesh, corners, options, stats) = unsafe {
         (
             deref_mut(mesh, "mesh")?,
-            points(polygon_xyz, n_points, "polygon_xyz")?,
+            corners(polygon_xyz, n_points, "polygon_xyz")?,
             read_optional(options, "options_or_null", mtcut_cut_options::DEFAULT)?,
             Out::optional(stats, "stats_or_null")?,
         )

@@ -2,13 +2,13 @@
 //! model at rest and the simulation's current mesh, whose positions the host sets every
 //! time step; a cut is made on the current mesh at once and on the model later.
 
-use super::cut::{cut_failure, mtcut_cut_stats, points, polygon_failure};
+use super::cut::{corners, cut_failure, mtcut_cut_stats, points, polygon_failure};
 use super::guard::{Out, OutSlice, deref, deref_mut, run, run_count};
 use super::mesh::mtcut_mesh;
 use super::mt::{extract_failure, mt_ref, mtcut_extract_options, mtcut_mt};
 use super::status::{Failure, FfiResult, MTCUT_STATUS_PENDING_WORK, mtcut_status};
 use super::versioned::{Versioned, VersionedOut, read_optional};
-use crate::cut::{LiveError, LiveMt, PendingBudget, Scalpel};
+use crate::cut::{CutError, LiveError, LiveMt, PendingBudget, Scalpel};
 use crate::geom::CutPolygon;
 use crate::mt::Mt;
 use std::mem::offset_of;
@@ -244,8 +244,24 @@ pub unsafe extern "C" fn mtcut_live_set_positions(
 ) -> mtcut_status {
     run("mtcut_live_set_positions", || {
         // SAFETY: the caller's contract, forwarded to the checks.
-        let (live, positions) = unsafe { (live_mut(live)?, points(xyz, n_vertices, "xyz")?) };
-        live.set_positions(&positions).map_err(live_failure)
+        let live = unsafe { live_mut(live) }?;
+        // The count first: a wrong one must not make the library read past `xyz`.
+        let expected = live.mesh().nb_vertices();
+        if n_vertices != expected {
+            let e = CutError::PositionCount {
+                count: n_vertices,
+                expected,
+            };
+            return Err(Failure::invalid(e.to_string()));
+        }
+        // SAFETY: the caller's contract, forwarded to the check.
+        let positions = unsafe { points(xyz, n_vertices, "xyz") }?;
+        // Positions that would invert a tet are a bad argument, not a bad mesh: the
+        // current mesh is unchanged.
+        live.set_positions(&positions).map_err(|e| match e {
+            LiveError::Cut(e @ CutError::InvertedTet { .. }) => Failure::invalid(e.to_string()),
+            e => live_failure(e),
+        })
     })
 }
 
@@ -272,7 +288,7 @@ pub unsafe extern "C" fn mtcut_live_cut(
         let (live, corners, stats) = unsafe {
             (
                 live_mut(live)?,
-                points(polygon_xyz, n_points, "polygon_xyz")?,
+                corners(polygon_xyz, n_points, "polygon_xyz")?,
                 Out::optional(stats_or_null, "stats_or_null")?,
             )
         };

@@ -5,7 +5,7 @@ use super::guard::{Out, OutSlice, c_str, deref, deref_mut, run, run_count, slice
 use super::status::{Failure, FfiResult, mtcut_status};
 use crate::cut::{CrackTips, CutError, CutOptions, Cutter};
 use crate::geom::{DVec3, out_of_range_text, supported};
-use crate::mesh::TetMesh;
+use crate::mesh::{MeshError, TetMesh};
 use std::ffi::{CStr, c_char};
 use std::path::PathBuf;
 use std::sync::OnceLock;
@@ -204,11 +204,20 @@ pub unsafe extern "C" fn mtcut_mesh_from_arrays(
     out: *mut *mut mtcut_mesh,
 ) -> mtcut_status {
     run("mtcut_mesh_from_arrays", || {
+        let (xyz_len, tets_len) = (
+            flat_len(n_vertices, 3, "vertices")?,
+            flat_len(n_tets, 4, "tets")?,
+        );
+        // Sizes a mesh cannot have are refused before anything is read or copied (the
+        // copy of a huge count would abort on memory).
+        if n_vertices >= u32::MAX as usize || n_tets >= u32::MAX as usize {
+            return Err(MeshError::TooLarge { max: u32::MAX - 1 }.into());
+        }
         // SAFETY: the caller's contract, forwarded to the checks.
         let (xyz, tets, out) = unsafe {
             (
-                slice(xyz, flat_len(n_vertices, 3, "vertices")?, "xyz")?,
-                slice(tets, flat_len(n_tets, 4, "tets")?, "tets")?,
+                slice(xyz, xyz_len, "xyz")?,
+                slice(tets, tets_len, "tets")?,
                 Out::new(out, "out")?,
             )
         };

@@ -3,14 +3,14 @@
 //! cut into variable-resolution meshes: by threshold, focus region and budget, from
 //! scratch or kept up to date incrementally by an `mtcut_frontier`.
 
-use super::cut::{cut_failure, mtcut_cut_stats, points, polygon_failure};
+use super::cut::{corners, cut_failure, mtcut_cut_stats, points, polygon_failure};
 use super::guard::{Out, c_str, deref, deref_mut, run, run_count};
 use super::measure::write_verdict;
 use super::mesh::{mesh_ref, mtcut_mesh, path_arg};
 use super::status::{
     Failure, FfiResult, MTCUT_STATUS_CANCELLED, MTCUT_STATUS_INTERNAL_PANIC,
-    MTCUT_STATUS_INVALID_MESH, MTCUT_STATUS_IO_ERROR, MTCUT_STATUS_NOT_FOUND,
-    MTCUT_STATUS_PARSE_ERROR, MTCUT_STATUS_UNSUPPORTED_FORMAT, mtcut_status,
+    MTCUT_STATUS_INVALID_MESH, MTCUT_STATUS_IO_ERROR, MTCUT_STATUS_PARSE_ERROR,
+    MTCUT_STATUS_UNSUPPORTED_FORMAT, mtcut_status,
 };
 use super::versioned::{Versioned, VersionedOut, read_optional};
 use crate::cut::{MtCutStats, MtCutter, RoiError, RoiRegion, region_of_interest};
@@ -310,7 +310,7 @@ pub unsafe extern "C" fn mtcut_mt_cut(
         let (handle, corners, stats) = unsafe {
             (
                 deref_mut(mt, "mt")?,
-                points(polygon_xyz, n_points, "polygon_xyz")?,
+                corners(polygon_xyz, n_points, "polygon_xyz")?,
                 Out::optional(stats_or_null, "stats_or_null")?,
             )
         };
@@ -395,7 +395,8 @@ pub unsafe extern "C" fn mtcut_mt_validate(
 
 /// Component `k` (from 0; `mtcut_mt_statistics` counts them) of a model that cuts
 /// separated into independent models, as a model of its own: `*out` receives a new
-/// handle. `MTCUT_STATUS_NOT_FOUND` when `k` is not below the count.
+/// handle. `MTCUT_STATUS_INVALID_ARGUMENT` when `k` is not below the count (as for
+/// `mtcut_mesh_extract_component`).
 ///
 /// # Safety
 /// `mt` must be a live model handle; `out` a writable pointer.
@@ -410,10 +411,9 @@ pub unsafe extern "C" fn mtcut_mt_component(
         let (mt, out) = unsafe { (mt_ref(mt)?, Out::new(out, "out")?) };
         let n = mt.nb_components();
         let part = mt.component(k).ok_or_else(|| {
-            Failure::new(
-                MTCUT_STATUS_NOT_FOUND,
-                format!("argument `k`: component {k} asked for, the model has {n}"),
-            )
+            Failure::invalid(format!(
+                "argument `k`: component {k} asked for, the model has {n}"
+            ))
         })?;
         out.write(mtcut_mt::boxed(part));
         Ok(())
