@@ -29,9 +29,12 @@
 //! recorded) loads with an empty record: every vertex as built, none made by a cut.
 //!
 //! Only primary data is stored; levels, boxes and arc lists are derived on loading by the
-//! same code that assembles a freshly built MT, which also checks every index, so a file
-//! that passes the checksum but was written wrong is still rejected with a message instead
-//! of crashing later.
+//! same code that assembles a freshly built MT, which also checks every index, and the
+//! model is then validated whole ([`Mt::validate`]), so a file that passes the checksum
+//! but holds no consistent model (written wrong, or edited and sealed again) is rejected
+//! with a message instead of giving invalid meshes or failing later. Validating costs
+//! about four times the parsing (a model of 1M input tets: 0.27 s to parse, 1.0 s to
+//! validate).
 //!
 //! The checksum is CRC-32 (through `flate2`, already a dependency for compressed VTK
 //! output): it detects every burst error up to 32 bits and any other corruption with
@@ -263,7 +266,17 @@ impl Mt {
                 "reserved header fields are not zero".into(),
             ));
         }
-        parse(payload, version).map_err(MtFileErrorKind::Corrupt)
+        let mt = parse(payload, version).map_err(MtFileErrorKind::Corrupt)?;
+        // A well-sealed file can still hold a model that is not one (written by a faulty
+        // tool, or edited and sealed again): every invariant is checked, so that nothing
+        // built on a loaded model (extractions, cuts) meets an inconsistent one.
+        let report = mt.validate();
+        if !report.is_valid() {
+            return Err(MtFileErrorKind::Corrupt(format!(
+                "the model is not consistent: {report}"
+            )));
+        }
+        Ok(mt)
     }
 }
 
