@@ -298,6 +298,35 @@ fn a_polygon_missing_the_mesh_changes_nothing_and_warns() {
     assert_eq!(mesh.nb_tets(), input("pinion-coarse.node").nb_tets());
 }
 
+/// A polygon lying exactly on an interior face of pinion-coarse (nodes 198, 199, 223)
+/// cuts no tet but opens faces (their vertices are copied), which separates a part: no
+/// "does not cut" warning (found probing the CLI: it warned).
+#[test]
+fn a_polygon_along_faces_separates_them_without_a_warning() {
+    let dir = scratch("cli_cut along faces");
+    let out = dir.join("opened.vtu");
+    let polygon = "0.270867,-0.145307,-0.691252;-0.556875,-0.459357,-0.226262;\
+                   -0.530377,-0.501178,-0.207338";
+    let input = data("pinion-coarse.node");
+    let o = mtcut(&["cut", s(&input), "--polygon", polygon, "-o", s(&out)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("does not cut"), "{}", stderr(&o));
+    let args = [
+        "cut",
+        s(&input),
+        "--polygon",
+        polygon,
+        "-o",
+        s(&out),
+        "--json",
+    ];
+    let j = json(&args);
+    assert_eq!(j["cuts"][0]["tets_cut"], 0, "{j}");
+    assert!(j["cuts"][0]["vertex_copies"].as_u64() > Some(0), "{j}");
+    assert_eq!(j["components"], 2, "{j}");
+    read_valid(&out);
+}
+
 // ---- bad input ----
 
 #[test]
@@ -364,6 +393,27 @@ fn bad_polygons_are_named_and_nothing_is_written() {
         ],
         &["polygon 0 (1st of 1, \"1,2\")", "expected 3"],
     );
+    // Too many corners: the message quotes the start of the text, not all of it.
+    let many: Vec<String> = (0..5000)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / 5000.0;
+            format!("{:.6},{:.6},0.1", a.cos(), a.sin())
+        })
+        .collect();
+    let err = fails(
+        &["cut", s(&mesh), "--polygon", &many.join(";"), "-o", s(&out)],
+        &["at most 4096 points, got 5000", "characters)"],
+    );
+    assert!(err.len() < 400, "{err}");
+    // Text that is not numbers is bad usage (2), numbers that are no polygon bad input (1).
+    for (bad, code) in [
+        ("a,b,c;1,0,0;0,1,0", 2),
+        ("1,2", 2),
+        ("0,0,0;1,0,0;2,0,0", 1),
+    ] {
+        let o = mtcut(&["cut", s(&mesh), "--polygon", bad, "-o", s(&out)]);
+        assert_eq!(o.status.code(), Some(code), "{bad}: {}", stderr(&o));
+    }
 }
 
 #[test]

@@ -81,19 +81,28 @@ pub fn polygon_name(i: usize, n: usize, text: &str) -> String {
         (3, r) if r != 13 => "rd",
         _ => "th",
     };
-    format!("polygon {i} ({k}{suffix} of {n}, \"{text}\")")
+    // A long text (thousands of corners) is quoted by its start: the message stays a line.
+    const QUOTED: usize = 80;
+    let quoted = match text.char_indices().nth(QUOTED) {
+        Some((end, _)) => format!("{}...\" ({} characters)", &text[..end], text.len()),
+        None => format!("{text}\""),
+    };
+    format!("polygon {i} ({k}{suffix} of {n}, \"{quoted})")
 }
 
-/// The checked polygons; an error names the polygon, its text and the problem.
-pub fn polygons(texts: &[String]) -> Result<Vec<CutPolygon>, String> {
+/// The checked polygons; an error names the polygon, its text and the problem. Text that
+/// is not numbers is bad usage (exit code 2, as for any unparsable option); numbers that
+/// make no polygon (collinear, beyond 1e50) are bad input.
+pub fn polygons(texts: &[String]) -> Result<Vec<CutPolygon>, Box<dyn std::error::Error>> {
     let n = texts.len();
     texts
         .iter()
         .enumerate()
         .map(|(i, text)| {
             let name = || polygon_name(i, n, text);
-            let corners = parse::corners(text).map_err(|e| format!("{}: {e}", name()))?;
-            CutPolygon::new(&corners).map_err(|e| format!("{}: {e}", name()))
+            let corners =
+                parse::corners(text).map_err(|e| crate::Usage(format!("{}: {e}", name())))?;
+            CutPolygon::new(&corners).map_err(|e| format!("{}: {e}", name()).into())
         })
         .collect()
 }
@@ -160,7 +169,8 @@ pub fn run(args: Args) -> CliResult {
             let name = polygon_name(i, polys.len(), &args.polygon[i]);
             format!("{name}: {e} (nothing written)")
         })?;
-        if r.stats.tets_cut == 0 && !args.json {
+        // A cut through vertices and along faces cuts no tet but separates them (copies).
+        if r.stats.tets_cut == 0 && r.stats.vertices_added == 0 && !args.json {
             eprintln!("mtcut: warning: polygon {i} does not cut the mesh");
         }
         stats.push(r.stats);

@@ -89,7 +89,8 @@ pub fn run(args: Args) -> CliResult {
             )
             .into());
         }
-        if s.tets_cut == 0 && !args.json {
+        // A cut through vertices and along faces cuts no tet but separates them (copies).
+        if s.tets_cut == 0 && s.vertices_added == 0 && !args.json {
             eprintln!("mtcut: warning: polygon {i} does not cut the model");
         }
         if s.moved_to_plane && !args.json {

@@ -245,7 +245,7 @@ fn print_text(
         crate::number(volume)
     );
     out!(
-        "error      up to {:e}; {} fragment(s) not applied",
+        "error      up to {:e}; {} fragment(s) refined (their collapses not applied)",
         s.max_error,
         s.refined_fragments
     );

@@ -75,6 +75,19 @@ enum Command {
 /// (unknown or conflicting options, unparsable numbers) are clap's (exit code 2).
 pub type CliResult = Result<(), Box<dyn std::error::Error>>;
 
+/// A bad option value found after the command line was parsed (a polygon whose text is
+/// not numbers): exit code 2, as for the usage errors the parser finds.
+#[derive(Debug)]
+pub struct Usage(pub String);
+
+impl std::fmt::Display for Usage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Usage {}
+
 fn main() -> ExitCode {
     // Past a file-size limit (`ulimit -f`) a write then fails with "File too large",
     // reported naming the file, instead of the process being killed by SIGXFSZ; the files
@@ -105,7 +118,11 @@ fn main() -> ExitCode {
                 return ExitCode::SUCCESS;
             }
             eprintln!("mtcut: error: {e}");
-            ExitCode::FAILURE
+            if e.is::<Usage>() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::FAILURE
+            }
         }
     }
 }
