@@ -504,7 +504,7 @@ pub unsafe extern "C" fn mtcut_mt_roi_sphere(
 /// arguments) or the model's.
 fn roi_failure(e: RoiError, args: &str) -> Failure {
     match e {
-        RoiError::InvalidRegion(_) | RoiError::Misses { .. } => {
+        RoiError::InvalidRegion(_) | RoiError::Misses { .. } | RoiError::NothingInside { .. } => {
             Failure::invalid(format!("{args}: {e}"))
         }
         RoiError::Cut { .. } | RoiError::Invalid(_) => {
