@@ -87,6 +87,20 @@ fn convert_to_tetgen_round_trips() {
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).starts_with("wrote "), "the report on stdout");
+    // medit files are read, not written: refused before anything is read.
+    let o = mtcut(&[
+        "convert",
+        data("liver.node").to_str().unwrap(),
+        "-o",
+        dir.join("copy.mesh").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("unknown output format"),
+        "{}",
+        stderr(&o)
+    );
     let a = info_json(&data("liver.node"));
     let b = info_json(&out);
     for key in [

@@ -73,5 +73,5 @@ fn write_mesh_dispatches_on_vtu_and_tetgen_round_trip_stays_exact() {
     let err = write_mesh(dir.path("liver.obj"), &mesh)
         .unwrap_err()
         .to_string();
-    assert!(err.contains("unknown mesh format"), "{err}");
+    assert!(err.contains("unknown output format"), "{err}");
 }

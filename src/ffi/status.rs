@@ -98,7 +98,9 @@ impl From<IoError> for Failure {
     fn from(e: IoError) -> Failure {
         let status = match &e.kind {
             IoErrorKind::Os(_) => MTCUT_STATUS_IO_ERROR,
-            IoErrorKind::UnknownFormat => MTCUT_STATUS_UNSUPPORTED_FORMAT,
+            IoErrorKind::UnknownFormat | IoErrorKind::UnknownOutputFormat => {
+                MTCUT_STATUS_UNSUPPORTED_FORMAT
+            }
             IoErrorKind::AtLine { .. } | IoErrorKind::Malformed(_) => MTCUT_STATUS_PARSE_ERROR,
             IoErrorKind::InvalidMesh { .. } => MTCUT_STATUS_INVALID_MESH,
         };

@@ -12,6 +12,10 @@ pub enum IoErrorKind {
     Os(#[from] std::io::Error),
     #[error("unknown mesh format (expected .vtu, .node/.ele or .mesh)")]
     UnknownFormat,
+    /// A mesh to write under an extension mtcut does not write (medit's `.mesh` is read
+    /// only).
+    #[error("unknown output format (mtcut writes .vtu, or .node/.ele)")]
+    UnknownOutputFormat,
     /// A syntax or content error at a line (1-based) of a text file.
     #[error("line {line}: {message}")]
     AtLine { line: usize, message: String },

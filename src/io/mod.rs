@@ -44,7 +44,7 @@ pub fn write_mesh(path: impl AsRef<Path>, mesh: &TetMesh) -> Result<(), IoError>
     match extension(path).as_str() {
         "vtu" => write_vtu(path, mesh, &VtuOptions::DEFAULT),
         "node" | "ele" => write_tetgen(path, mesh),
-        _ => Err(IoError::new(path, IoErrorKind::UnknownFormat)),
+        _ => Err(IoError::new(path, IoErrorKind::UnknownOutputFormat)),
     }
 }
 

@@ -1,6 +1,6 @@
 //! `mtcut convert IN -o OUT`: any readable format to .vtu or .node/.ele, by extension.
 
-use crate::CliResult;
+use crate::{CliResult, parse};
 use mtcut::io::{read_mesh, write_mesh};
 use std::path::PathBuf;
 
@@ -14,9 +14,12 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> CliResult {
+    // Before reading: a .mesh (or any other) output is refused as one mtcut cannot write.
+    parse::mesh_output(&args.output)?;
     let (mesh, report) = read_mesh(&args.input)?;
     write_mesh(&args.output, &mesh)?;
-    eprintln!(
+    // The report on stdout, as every command's.
+    out!(
         "wrote {} ({} vertices, {} tets; {} tets re-oriented, {} unused vertices kept)",
         args.output.display(),
         mesh.nb_vertices(),
