@@ -580,7 +580,7 @@ fn build_rejects_bad_input() {
     assert!(!out.exists());
     fails(
         &["build", m, "-o", s(&dir.join("no/such/dir/m.mt"))],
-        &["m.mt", "No such file"],
+        &["m.mt", "folder", "does not exist"],
     );
     // An invalid mesh (a tet using a vertex twice) is rejected by the reader.
     std::fs::write(

@@ -319,3 +319,65 @@ fn a_turning_blade_cuts_a_plain_mesh_step_by_step() {
     );
     assert!(!series.exists(), "a refused run wrote its folder");
 }
+
+/// A blade that does not move during a step cuts nothing there, on a mesh as on a model
+/// (the mesh's run failed on a degenerate sweep); a budget below the coarsest mesh is met
+/// by writing it anyway, with a warning and `budget_met` false (it was silent).
+#[test]
+fn a_pause_cuts_nothing_and_a_missed_budget_is_reported() {
+    let dir = scratch("cli_scalpel_pause");
+    let mesh = data("pinion-coarse.node");
+    let model = dir.join("pinion.mt");
+    ok(&["build", s(&mesh), "-o", s(&model)]);
+    let b = [-2.0, -2.0, 0.1];
+    let blades = [
+        [b, [2.0, -2.0, 0.1]],
+        [b, [2.0, -2.0, 0.1]],
+        [[-2.0, 2.0, 0.1], [2.0, 2.0, 0.1]],
+    ];
+    let path = dir.join("path.json");
+    write_path(&path, &blades);
+    for input in [&mesh, &model] {
+        let out = dir.join("series");
+        let j = json(&[
+            "scalpel",
+            s(input),
+            "--path",
+            s(&path),
+            "-o",
+            s(&out),
+            "--json",
+        ]);
+        let steps = j["steps"].as_array().expect("steps");
+        assert_eq!(steps[0]["polygons"], 0, "{j}");
+        assert_eq!(steps[0]["seconds"].as_f64().unwrap().to_bits(), 0, "{j}");
+        assert!(steps[1]["polygons"].as_u64() > Some(0), "{j}");
+        assert_eq!(j["components"], 2, "{j}");
+    }
+    let out = dir.join("budget");
+    let args = [
+        "scalpel",
+        s(&model),
+        "--path",
+        s(&path),
+        "-o",
+        s(&out),
+        "--budget",
+        "10",
+    ];
+    let o = common::mtcut(&args);
+    assert!(o.status.success(), "{}", cli_support::stderr(&o));
+    let err = cli_support::stderr(&o);
+    assert!(err.contains("step 2: even the coarsest mesh"), "{err}");
+    let mut with_json = args.to_vec();
+    with_json.push("--json");
+    let j = json(&with_json);
+    assert_eq!(j["steps"][1]["budget_met"], false, "{j}");
+    // A --save into a folder that does not exist is refused before the first step.
+    let (out, save) = (dir.join("never"), dir.join("none").join("cut.mt"));
+    fails(
+        &scalpel_args(&model, &path, &out, &save, &[]),
+        &["does not exist"],
+    );
+    assert!(!out.exists(), "the refused run wrote its series");
+}

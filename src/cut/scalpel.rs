@@ -60,7 +60,8 @@ impl ScalpelStep {
 
     /// Seconds the step took (its cuts).
     pub fn seconds(&self) -> f64 {
-        self.cuts.iter().map(|s| s.time.total).sum()
+        // Folded from +0: an empty float sum is -0, printed "-0.0000 s" for a pause.
+        self.cuts.iter().fold(0.0, |t, s| t + s.time.total)
     }
 }
 

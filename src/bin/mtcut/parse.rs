@@ -130,7 +130,7 @@ pub fn mesh_output(path: &std::path::Path) -> Result<(), String> {
         .unwrap_or("")
         .to_ascii_lowercase();
     match ext.as_str() {
-        "vtu" | "node" | "ele" => Ok(()),
+        "vtu" | "node" | "ele" => in_a_directory(path),
         _ => Err(format!(
             "{}: unknown output format (expected .vtu, or .node/.ele)",
             path.display()
@@ -153,21 +153,25 @@ pub fn model_output(path: &std::path::Path) -> Result<(), String> {
              (use `mtcut extract` for meshes)",
             path.display()
         )),
+        _ => in_a_directory(path),
+    }
+}
+
+/// Checks that the folder an output goes to exists, so that a long run (a scalpel's
+/// hundred steps) does not end in "No such file or directory".
+fn in_a_directory(path: &std::path::Path) -> Result<(), String> {
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => Err(format!(
+            "{}: the folder {} does not exist",
+            path.display(),
+            dir.display()
+        )),
         _ => Ok(()),
     }
 }
 
-/// An `.mt` model, refused unless [`mtcut::mt::Mt::validate`] finds it valid (commands
-/// that write from a model never start from a broken one).
+/// An `.mt` model: loading validates it ([`mtcut::mt::Mt::validate`]), so commands that
+/// write from a model never start from a broken one.
 pub fn valid_model(path: &std::path::Path) -> Result<mtcut::mt::Mt, Box<dyn std::error::Error>> {
-    let mt = mtcut::mt::Mt::load(path)?;
-    let report = mt.validate();
-    if !report.is_valid() {
-        return Err(format!(
-            "{} is not a valid model ({report}); nothing written",
-            path.display()
-        )
-        .into());
-    }
-    Ok(mt)
+    Ok(mtcut::mt::Mt::load(path)?)
 }

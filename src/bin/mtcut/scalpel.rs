@@ -145,9 +145,21 @@ pub fn run(args: Args) -> CliResult {
     let mut scalpel = Scalpel::new(mt, blades[0])?;
     let mut series = Series::new(&args.output);
     let mut steps: Vec<Value> = Vec::new();
-    let write_step = |k: usize, mt: &Mt, series: &mut Series| -> CliResult {
-        series.write(k, &mt.extract(&options)?.mesh)
-    };
+    // Writes step k's mesh; whether it met the budget (as `extract`, a coarsest mesh over
+    // it is written anyway, with a warning).
+    let write_step =
+        |k: usize, mt: &Mt, series: &mut Series| -> Result<bool, Box<dyn std::error::Error>> {
+            let e = mt.extract(&options)?;
+            if !e.stats.budget_met && !args.json {
+                eprintln!(
+                    "mtcut: warning: step {k}: even the coarsest mesh ({} tets) exceeds the \
+                 budget; it was written anyway",
+                    e.stats.tets
+                );
+            }
+            series.write(k, &e.mesh)?;
+            Ok(e.stats.budget_met)
+        };
     write_step(0, scalpel.mt(), &mut series)?;
     let start = Instant::now();
     for (k, &to) in blades.iter().enumerate().skip(1) {
@@ -160,11 +172,12 @@ pub fn run(args: Args) -> CliResult {
         if !report.is_valid() {
             return Err(invalid_step(k, "model", &report, &args.output));
         }
-        write_step(k, scalpel.mt(), &mut series)?;
+        let budget_met = write_step(k, scalpel.mt(), &mut series)?;
         let components = scalpel.mt().nb_components();
         if args.json {
             steps.push(json!({
                 "step": k,
+                "budget_met": budget_met,
                 "polygons": step.cuts.len(),
                 "tets_cut": step.tets_cut(),
                 "cuts": step.cuts.iter().map(|s| s.to_json()).collect::<Vec<_>>(),
@@ -328,7 +341,12 @@ fn run_mesh(args: &Args) -> CliResult {
     for (k, w) in blades.windows(2).enumerate().map(|(k, w)| (k + 1, w)) {
         let failed =
             |e: &dyn std::fmt::Display| format!("step {k}: {e}; steps 0-{} written", k - 1);
-        let sweep = scalpel_sweep(w[0], w[1], SWEEP_PLANARITY).map_err(|e| failed(&e))?;
+        // A blade that did not move sweeps nothing: a step without cuts, as for a model.
+        let sweep = if w[0] == w[1] {
+            Vec::new()
+        } else {
+            scalpel_sweep(w[0], w[1], SWEEP_PLANARITY).map_err(|e| failed(&e))?
+        };
         let (mut seconds, mut tets_cut) = (0.0, 0);
         let mut cuts: Vec<Value> = Vec::new();
         for polygon in &sweep {
