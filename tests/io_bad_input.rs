@@ -107,6 +107,24 @@ fn the_valid_base_files_are_accepted() {
 
 // ---- .vtu --------------------------------------------------------------------------
 
+/// Point data arrays without a name, or with an empty one, are named by their place: no
+/// column can be named "" (found through the C ABI: it made a column no call could name).
+#[test]
+fn unnamed_vtu_arrays_are_named_by_their_place() {
+    let text = vtu_text(&text_points(&POINTS), &tets_of(&TETS), &[10, 10]);
+    let n = POINTS.len();
+    let values = vec!["1"; n].join(" ");
+    let data = format!(
+        "<PointData>\n<DataArray type=\"Float64\" Name=\"\" format=\"ascii\">{values}</DataArray>\n\
+         <DataArray type=\"Float64\" format=\"ascii\">{values}</DataArray>\n</PointData>\n<Points>"
+    );
+    let text = text.replacen("<Points>", &data, 1);
+    let (mesh, _) = parse_vtu(text.as_bytes(), Path::new("unnamed.vtu")).unwrap();
+    let names: Vec<&str> = mesh.point_data.iter().map(|a| a.name.as_str()).collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+    assert!(names.iter().all(|n| !n.is_empty()), "{names:?}");
+}
+
 #[test]
 fn vtu_truncated_file() {
     // ASCII: the XML ends inside an element.

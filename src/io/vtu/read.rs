@@ -168,9 +168,12 @@ impl<'a> Reader<'a> {
                     ),
                 ));
             }
+            // An array without a name, or with an empty one (no attribute can be named
+            // "": the API looks columns up by name), is named by its place.
             let name = a
                 .name
                 .clone()
+                .filter(|n| !n.is_empty())
                 .unwrap_or_else(|| format!("{}_{k}", section.name()));
             if out.get(&name).is_some() {
                 return Err(self.array_error(
