@@ -378,21 +378,7 @@ fn bad_input_is_refused_with_a_reason() {
     // No snapping at all is refused: a plane through vertices up to rounding would cut
     // their edges at their very position (flat tets; a unit-cube case found by the C API's
     // random test). The smallest accepted value cuts that case validly.
-    let cube = TetMesh::from_arrays(
-        [0, 1, 2, 3, 4, 5, 6, 7]
-            .map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
-            .to_vec(),
-        vec![
-            [0, 1, 3, 7],
-            [0, 1, 5, 7],
-            [0, 2, 3, 7],
-            [0, 2, 6, 7],
-            [0, 4, 5, 7],
-            [0, 4, 6, 7],
-        ],
-    )
-    .expect("cube")
-    .0;
+    let cube = cut_common::kuhn_grid(1);
     let through_vertices = CutPolygon::new(&[
         DVec3::new(-1.875, -4.03125, -4.5),
         DVec3::new(4.125, -2.53125, -1.5),

@@ -481,45 +481,7 @@ fn a_blade_swept_across_the_mt_stays_valid() {
 #[test]
 fn a_new_point_rounding_past_a_fragments_box_grows_the_box() {
     use mtcut::geom::DVec3;
-    use mtcut::mesh::TetMesh;
-    let n = 6;
-    let corner = [
-        [0, 0, 0],
-        [1, 0, 0],
-        [0, 1, 0],
-        [1, 1, 0],
-        [0, 0, 1],
-        [1, 0, 1],
-        [0, 1, 1],
-        [1, 1, 1],
-    ];
-    let kuhn = [
-        [0, 1, 3, 7],
-        [0, 1, 5, 7],
-        [0, 2, 3, 7],
-        [0, 2, 6, 7],
-        [0, 4, 5, 7],
-        [0, 4, 6, 7],
-    ];
-    let id = |i: usize, j: usize, k: usize| (i + (n + 1) * (j + (n + 1) * k)) as u32;
-    let mut positions = Vec::new();
-    let mut tets = Vec::new();
-    for k in 0..=n {
-        for j in 0..=n {
-            for i in 0..=n {
-                positions.push(DVec3::new(i as f64, j as f64, k as f64));
-                if i < n && j < n && k < n {
-                    for c in kuhn {
-                        tets.push(c.map(|q| {
-                            let d: [usize; 3] = corner[q];
-                            id(i + d[0], j + d[1], k + d[2])
-                        }));
-                    }
-                }
-            }
-        }
-    }
-    let grid = TetMesh::from_arrays(positions, tets).expect("a grid").0;
+    let grid = cut_common::kuhn_grid(6);
     let mt = Mt::build(&grid, &mtcut::mt::BuildOptions::DEFAULT)
         .expect("built")
         .0;

@@ -504,6 +504,41 @@ pub fn grid_mesh(n: usize) -> TetMesh {
         .0
 }
 
+/// The same grid as [`grid_mesh`], its tets listed as the C examples list them: per cube
+/// (x fastest, then y, then z; a vertex's id is `i + (n + 1) (j + (n + 1) k)`), the six
+/// tets of the Kuhn table around the diagonal from corner 0 to corner 7 (corner `c` at
+/// `(c & 1, c >> 1 & 1, c >> 2 & 1)`). An MT built from it differs from one built from
+/// [`grid_mesh`] (the order of the tets steers the simplification), so cases found through
+/// the C ABI are replayed on it.
+pub fn kuhn_grid(n: usize) -> TetMesh {
+    const KUHN: [[usize; 4]; 6] = [
+        [0, 1, 3, 7],
+        [0, 1, 5, 7],
+        [0, 2, 3, 7],
+        [0, 2, 6, 7],
+        [0, 4, 5, 7],
+        [0, 4, 6, 7],
+    ];
+    let id = |i: usize, j: usize, k: usize| (i + (n + 1) * (j + (n + 1) * k)) as u32;
+    let mut positions = Vec::new();
+    let mut tets = Vec::new();
+    for k in 0..=n {
+        for j in 0..=n {
+            for i in 0..=n {
+                positions.push(DVec3::new(i as f64, j as f64, k as f64));
+                if i < n && j < n && k < n {
+                    for t in KUHN {
+                        tets.push(t.map(|c| id(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1))));
+                    }
+                }
+            }
+        }
+    }
+    TetMesh::from_arrays(positions, tets)
+        .expect("a valid grid")
+        .0
+}
+
 /// A square of half-size `r` centred at `c`, in the plane of unit normal `normal`.
 pub fn square(c: DVec3, normal: DVec3, r: f64) -> CutPolygon {
     let u = normal.any_orthonormal_vector();
