@@ -545,3 +545,30 @@ fn scalpel_sweeps_continue_their_crack() {
     );
     assert!(!dir.join("cut.mt").exists());
 }
+
+/// `--separate` writes all parts or none: a part that cannot be written (here its name is
+/// taken by a folder) leaves none of the others behind (part 0 was left before).
+#[test]
+fn separate_parts_are_written_all_or_none() {
+    let dir = scratch("cli_cut separate all or none");
+    let out = dir.join("part.vtu");
+    std::fs::create_dir(dir.join("part-1.vtu")).unwrap();
+    let through = square(DVec3::new(0.0, 0.0, 0.1), 2, 2.0);
+    let input = data("pinion-coarse.node");
+    let args = [
+        "cut",
+        s(&input),
+        "--polygon",
+        &through,
+        "-o",
+        s(&out),
+        "--separate",
+    ];
+    fails(&args, &["part-1.vtu"]);
+    assert!(!dir.join("part-0.vtu").exists(), "part 0 was written");
+    std::fs::remove_dir(dir.join("part-1.vtu")).unwrap();
+    ok(&args);
+    for k in 0..2 {
+        read_valid(&dir.join(format!("part-{k}.vtu")));
+    }
+}

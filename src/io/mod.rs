@@ -40,12 +40,29 @@ pub fn read_mesh(path: impl AsRef<Path>) -> Result<(TetMesh, ImportReport), IoEr
 /// Writes a mesh, choosing the format from the extension: `.vtu` (with
 /// [`VtuOptions::DEFAULT`]: binary, zlib-compressed) or `.node` / `.ele` (writes both).
 pub fn write_mesh(path: impl AsRef<Path>, mesh: &TetMesh) -> Result<(), IoError> {
-    let path = path.as_ref();
-    match extension(path).as_str() {
-        "vtu" => write_vtu(path, mesh, &VtuOptions::DEFAULT),
-        "node" | "ele" => write_tetgen(path, mesh),
-        _ => Err(IoError::new(path, IoErrorKind::UnknownOutputFormat)),
+    write_meshes(&[(path.as_ref(), mesh)])
+}
+
+/// Writes several meshes, each as [`write_mesh`] would, all or none: every file is
+/// written beside its destination first and they replace what was there only once all
+/// are written, so a failure (a full disk, a destination that is a folder) leaves no part
+/// of the set behind (`mtcut cut --separate` writes its parts so).
+pub fn write_meshes(meshes: &[(&Path, &TetMesh)]) -> Result<(), IoError> {
+    let mut files: Vec<(std::path::PathBuf, Vec<u8>)> = Vec::new();
+    for &(path, mesh) in meshes {
+        match extension(path).as_str() {
+            "vtu" => {
+                let mut out = Vec::new();
+                encode_vtu(mesh, &VtuOptions::DEFAULT, &mut out)
+                    .map_err(|e| IoError::malformed(path, e))?;
+                files.push((path.to_path_buf(), out));
+            }
+            "node" | "ele" => files.extend(tetgen::tetgen_files(path, mesh)),
+            _ => return Err(IoError::new(path, IoErrorKind::UnknownOutputFormat)),
+        }
     }
+    let list: Vec<(&Path, &[u8])> = files.iter().map(|(p, b)| (p.as_path(), &b[..])).collect();
+    write_files(&list).map_err(|(i, e)| IoError::new(list[i].0, e))
 }
 
 fn extension(path: &Path) -> String {

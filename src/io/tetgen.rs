@@ -296,18 +296,24 @@ pub fn parse_tetgen(
 /// Scalar point data become node attributes and scalar cell data element attributes, in
 /// column order; vector columns cannot be expressed in TetGen files and are left out.
 pub fn write_tetgen(path: &Path, mesh: &TetMesh) -> Result<(), IoError> {
+    let [(node_path, node), (ele_path, ele)] = tetgen_files(path, mesh);
+    // Both files replaced together: never a new .node beside an old .ele.
+    let files = [(&*node_path, &node[..]), (&*ele_path, &ele[..])];
+    crate::io::write_files(&files).map_err(|(i, e)| IoError::new(files[i].0, e))
+}
+
+/// The paths and bytes of the TetGen pair for `mesh` next to `path` (see
+/// [`write_tetgen`]), made in memory so that both files can be replaced together.
+pub(crate) fn tetgen_files(path: &Path, mesh: &TetMesh) -> [(PathBuf, Vec<u8>); 2] {
     let (node_path, ele_path) = pair(path);
     let scalar = |a: &&Attribute| a.components == 1;
     let pattrs: Vec<&Attribute> = mesh.point_data.iter().filter(scalar).collect();
     let cattrs: Vec<&Attribute> = mesh.cell_data.iter().filter(scalar).collect();
     let (mut node, mut ele) = (Vec::new(), Vec::new());
-    // Into memory first, so that both files are replaced together: never a new .node
-    // beside an old .ele.
     write_nodes(&mut node, mesh, &pattrs)
         .and_then(|()| write_elements(&mut ele, mesh, &cattrs))
         .expect("writing into memory does not fail");
-    let files = [(&*node_path, &node[..]), (&*ele_path, &ele[..])];
-    crate::io::write_files(&files).map_err(|(i, e)| IoError::new(files[i].0, e))
+    [(node_path, node), (ele_path, ele)]
 }
 
 fn write_nodes(w: &mut Vec<u8>, mesh: &TetMesh, attrs: &[&Attribute]) -> std::io::Result<()> {

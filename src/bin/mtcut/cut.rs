@@ -11,7 +11,7 @@ use crate::CliResult;
 use crate::parse;
 use mtcut::cut::{Components, CutOptions, CutStats, Cutter, Scheme};
 use mtcut::geom::CutPolygon;
-use mtcut::io::{read_mesh, write_mesh};
+use mtcut::io::{read_mesh, write_mesh, write_meshes};
 use mtcut::mesh::{Severity, TetId, TetMesh};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -190,13 +190,14 @@ pub fn run(args: Args) -> CliResult {
     let parts = Parts::of(&mesh);
     let t_write = Instant::now();
     let outputs: Vec<PathBuf> = if args.separate {
-        let mut out = Vec::with_capacity(parts.components.count);
-        for (k, part) in parts.components.extract_all(&mesh).iter().enumerate() {
-            let path = part_path(&args.output, k);
-            write_mesh(&path, part)?;
-            out.push(path);
-        }
-        out
+        let meshes = parts.components.extract_all(&mesh);
+        let paths: Vec<PathBuf> = (0..meshes.len())
+            .map(|k| part_path(&args.output, k))
+            .collect();
+        // All parts or none: a failure on one leaves none of them behind.
+        let files: Vec<_> = paths.iter().map(PathBuf::as_path).zip(&meshes).collect();
+        write_meshes(&files)?;
+        paths
     } else {
         write_mesh(&args.output, &mesh)?;
         vec![args.output.clone()]
