@@ -71,8 +71,8 @@ struct Opened {
     /// Every tet below `sorted` whose creator or destroyer was set since opening (repeats
     /// allowed): the tets not listed are where the opened MT's arcs had them.
     relabelled: Vec<u32>,
-    /// The fragment boxes when opened.
-    boxes: Option<(BoxFrame, Vec<QuantBox>)>,
+    /// The fragment boxes when opened, and the pool's vertex count then.
+    boxes: Option<(BoxFrame, Vec<QuantBox>, usize)>,
     /// The DAG tables when opened (kept if the arcs are).
     dag: Option<KnownDag>,
     /// The arcs' tet ranges when opened (`arc_start`), updated in place by a close that
@@ -133,6 +133,7 @@ impl Mt {
     /// against the arcs in debug builds; links of another length are not used).
     pub(crate) fn open_with(self, links: Option<TetLinks>) -> OpenMt {
         let nt = self.nb_tets();
+        let nv = self.positions.len();
         let TetLinks { creator, destroyer } = match links {
             Some(l) if l.creator.len() == nt && l.destroyer.len() == nt => {
                 debug_assert!(
@@ -162,7 +163,7 @@ impl Mt {
             opened: Opened {
                 sorted: nt,
                 relabelled: Vec::new(),
-                boxes: Some((self.frame, self.bbox)),
+                boxes: Some((self.frame, self.bbox, nv)),
                 dag: Some(KnownDag {
                     out_start: self.out_start,
                     arc_destroyer: self.arc_destroyer,
@@ -418,43 +419,56 @@ impl OpenMt {
             }
         }
         let known_boxes = match (this.opened.boxes.take(), this.changed_fragments.take()) {
-            (Some((frame, boxes)), Some(listed)) => {
+            (Some((frame, boxes, nv)), Some(listed)) => {
                 let mut changed = vec![false; boxes.len()];
                 for f in listed {
                     if let Some(c) = changed.get_mut(f as usize) {
                         *c = true;
                     }
                 }
-                Some(KnownBoxes {
-                    frame,
-                    boxes,
-                    changed,
-                })
+                Some((
+                    KnownBoxes {
+                        frame,
+                        boxes,
+                        changed,
+                    },
+                    nv,
+                ))
             }
             _ => None,
         };
         // The editor lists the fragments whose tets it moved or split; but a vertex it
         // added can round an ulp beyond the points it combines (a face point past its
-        // face's box), past the kept box of a fragment it did not list: the tets written
-        // or appended are checked against their fragments' kept boxes (without that list,
-        // every box is derived).
-        let known_boxes = known_boxes.zip(written.as_ref()).map(|(mut k, written)| {
-            let opened = this.opened.sorted.min(nt);
-            let written = written.iter().map(|&t| t as usize).filter(|&t| t < opened);
-            for t in written.chain(opened..nt) {
-                let mut b = crate::geom::Aabb::EMPTY;
-                for v in this.tets[t].iter().filter(|v| **v != GHOST) {
-                    b.grow(this.positions[v.idx()]);
-                }
-                let q = k.frame.enclose(&b);
-                for f in [this.creator[t].idx(), this.destroyer[t].idx()] {
-                    if f < k.boxes.len() && !k.changed[f] && !k.boxes[f].contains(&q) {
-                        k.changed[f] = true;
+        // face's box), past the kept box of a fragment it did not list: the added vertices
+        // of the tets written or appended are checked against their fragments' kept boxes
+        // (the older ones are corners of the tets they replace, inside already; without
+        // the list of tets written, every box is derived).
+        let known_boxes = known_boxes
+            .zip(written.as_ref())
+            .map(|((mut k, nv), written)| {
+                let opened = this.opened.sorted.min(nt);
+                let written = written.iter().map(|&t| t as usize).filter(|&t| t < opened);
+                for t in written.chain(opened..nt) {
+                    for f in [this.creator[t].idx(), this.destroyer[t].idx()] {
+                        if f >= k.boxes.len() || k.changed[f] {
+                            continue;
+                        }
+                        // Exactly `enclose(p) ⊆ box`: the box decoded with `enclose`'s arithmetic.
+                        let b = k.frame.expand(k.boxes[f]);
+                        let inside = |v: &VertexId| {
+                            let p = this.positions[v.idx()];
+                            p.cmpge(b.min).all() && p.cmple(b.max).all()
+                        };
+                        let mut added = this.tets[t]
+                            .iter()
+                            .filter(|v| **v != GHOST && v.idx() >= nv);
+                        if !added.all(inside) {
+                            k.changed[f] = true;
+                        }
                     }
                 }
-            }
-            k
-        });
+                k
+            });
         let merge = Merge::plan(
             &this.creator,
             &this.destroyer,

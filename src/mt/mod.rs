@@ -754,12 +754,6 @@ impl QuantBox {
         min: [u16::MAX; 3],
         max: [0; 3],
     };
-
-    /// Whether `other` lies inside this box (an empty one always does).
-    pub(crate) fn contains(&self, other: &QuantBox) -> bool {
-        *other == QuantBox::EMPTY
-            || (0..3).all(|a| self.min[a] <= other.min[a] && other.max[a] <= self.max[a])
-    }
 }
 
 /// The box of every vertex of an MT, divided into 65535 steps per axis (the last step
