@@ -139,6 +139,10 @@ fn bad_regions_write_nothing() {
         &["not finite"],
     );
     fails(&["roi", s(&model), "-o", s(&out)], &["--box"]);
+    // A sphere of radius 0 is bad usage, as a negative one (exit 2 from the parser).
+    let o = common::mtcut(&["roi", s(&model), "--sphere", "0,0,0,0", "-o", s(&out)]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(cli_support::stderr(&o).contains("radius > 0"));
     fails(
         &[
             "roi",

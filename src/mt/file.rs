@@ -59,7 +59,7 @@ const HEADER: usize = 32;
 pub enum MtFileErrorKind {
     #[error("{0}")]
     Os(#[from] std::io::Error),
-    #[error("not an mtcut model (wrong magic bytes {found:02x?})")]
+    #[error("not an mtcut model (wrong magic bytes, in hex {found:02x?})")]
     WrongMagic { found: Vec<u8> },
     #[error(
         "format version {found} is not supported (this library reads versions 1 to {supported})"

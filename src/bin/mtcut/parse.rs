@@ -97,6 +97,17 @@ pub fn sphere(text: &str) -> Result<Sphere, String> {
     Ok(Sphere { center, radius })
 }
 
+/// A sphere bounding a region of interest: as [`sphere`], with a radius above 0 (a focus
+/// sphere of radius 0 is a point; a region of radius 0 holds nothing).
+pub fn region_sphere(text: &str) -> Result<Sphere, String> {
+    let s = sphere(text)?;
+    if s.radius > 0.0 {
+        Ok(s)
+    } else {
+        Err(format!("radius {} (a region needs a radius > 0)", s.radius))
+    }
+}
+
 /// A box `x0,y0,z0,x1,y1,z1`: six numbers, the min and max corners (whether it is
 /// finite and not empty is judged by the caller, which names the box).
 pub fn aabb(text: &str) -> Result<mtcut::geom::Aabb, String> {

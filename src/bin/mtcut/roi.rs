@@ -21,7 +21,7 @@ pub struct Region {
     aabb: Option<Aabb>,
     /// A sphere (centre x,y,z and radius r), bounded by a circumscribing polyhedron of 14
     /// planes: the sub-model also keeps what lies between the sphere and that polyhedron.
-    #[arg(long, value_name = "x,y,z,r", allow_hyphen_values = true, value_parser = parse::sphere)]
+    #[arg(long, value_name = "x,y,z,r", allow_hyphen_values = true, value_parser = parse::region_sphere)]
     sphere: Option<Sphere>,
 }
 
