@@ -51,17 +51,16 @@ pub(crate) fn write_files(files: &[(&Path, &[u8])]) -> Result<(), (usize, io::Er
     let mut staged: Vec<Staged> = Vec::with_capacity(files.len());
     for (i, &(path, bytes)) in files.iter().enumerate() {
         let written = match plan(path, i) {
-            Ok(Plan::Replace {
+            Plan::Replace {
                 mut file,
                 staged: s,
-            }) => {
+            } => {
                 // Listed before the result is known, so that a failed write's temporary
                 // file is removed too.
                 staged.push(s);
                 file.write_all(bytes)
             }
-            Ok(Plan::InPlace(p)) => std::fs::write(p, bytes),
-            Err(e) => Err(e),
+            Plan::InPlace(p) => std::fs::write(p, bytes),
         };
         if let Err(e) = written {
             remove_temporaries(&staged);
@@ -89,23 +88,24 @@ fn remove_temporaries(staged: &[Staged]) {
     }
 }
 
-/// How `path` will be written: to a new temporary file beside it, or in place.
-fn plan(path: &Path, index: usize) -> io::Result<Plan> {
+/// How `path` will be written: to a new temporary file beside it, or in place (where
+/// the plain write reports whatever is wrong with the destination).
+fn plan(path: &Path, index: usize) -> Plan {
     let target = match std::fs::symlink_metadata(path) {
         Ok(m) if m.file_type().is_symlink() => match std::fs::canonicalize(path) {
             Ok(t) => t,
             // A dangling link: writing through it creates the file it names.
-            Err(_) => return Ok(Plan::InPlace(path.to_path_buf())),
+            Err(_) => return Plan::InPlace(path.to_path_buf()),
         },
         _ => path.to_path_buf(),
     };
     let permissions = match std::fs::metadata(&target) {
-        Ok(m) if !m.is_file() => return Ok(Plan::InPlace(target)),
+        Ok(m) if !m.is_file() => return Plan::InPlace(target),
         Ok(m) => Some(m.permissions()),
         Err(_) => None,
     };
     let Some(name) = target.file_name() else {
-        return Ok(Plan::InPlace(target));
+        return Plan::InPlace(target);
     };
     let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
@@ -122,20 +122,18 @@ fn plan(path: &Path, index: usize) -> io::Result<Plan> {
     // A directory that takes no new file (not writable, a name too long with the
     // suffix, a missing directory) is left to the plain write, which reports the
     // destination's own error or succeeds on a writable file.
-    Ok(
-        match OpenOptions::new().write(true).create_new(true).open(&tmp) {
-            Ok(file) => Plan::Replace {
-                file,
-                staged: Staged {
-                    index,
-                    tmp,
-                    target,
-                    permissions,
-                },
+    match OpenOptions::new().write(true).create_new(true).open(&tmp) {
+        Ok(file) => Plan::Replace {
+            file,
+            staged: Staged {
+                index,
+                tmp,
+                target,
+                permissions,
             },
-            Err(_) => Plan::InPlace(target),
         },
-    )
+        Err(_) => Plan::InPlace(target),
+    }
 }
 
 #[cfg(test)]
