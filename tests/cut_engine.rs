@@ -149,6 +149,53 @@ fn sequences_of_cuts_crossing_earlier_cuts() {
     }
 }
 
+/// A crack ending against an earlier one: on a Kuhn grid, a scalpel's cut in the plane
+/// y = 3, then one in x + y = 9, whose plane meets the first crack along the body's edge
+/// x = 6 and whose contour crosses that edge at z = 2.57. The second crack ends there with
+/// a crack tip in a lip face of the first (on the side it cuts), and the other lip, which
+/// it does not reach, keeps its face whole. That tip lies inside the other lip's face, yet
+/// no T-junction: the lips are apart. `validate` reported it as a hanging vertex; it now
+/// tells the two lips apart by the copies the first cut made, and warns.
+#[test]
+fn a_crack_tip_on_one_lip_of_an_earlier_crack_is_valid() {
+    let mut cutter = Cutter::new(kuhn_grid(6), CutOptions::SCALPEL).expect("options");
+    let polygons = [
+        [
+            [12.09927881647388, 3.0, 4.699096907691184],
+            [12.09927881647388, 3.0, -0.6828781670184503],
+            [2.0331076716833056, 3.0, -0.6828781670184503],
+            [2.0331076716833056, 3.0, 4.699096907691184],
+        ],
+        [
+            [7.917299046672652, 1.0827009533273464, 5.285665899452383],
+            [1.9987317447729644, 7.001268255227037, -3.0844522487120942],
+            [0.562635298946353, 8.437364701053648, -1.0535051781483016],
+            [6.481202600846041, 2.518797399153958, 7.316612970016175],
+        ],
+    ];
+    for (k, corners) in polygons.iter().enumerate() {
+        let polygon = CutPolygon::new(&corners.map(DVec3::from_array)).expect("polygon");
+        let r = cutter.cut(&polygon).expect("cut");
+        assert!(r.stats.tets_cut > 0, "cut {k} cuts the grid");
+        assert_valid(cutter.mesh(), &format!("after cut {k}"));
+    }
+    assert_eq!(
+        cutter.mesh().validate().count(ViolationKind::LipsApart),
+        1,
+        "the tip lies on the other lip's face"
+    );
+    // The tip the test is about: a vertex of the second cut at (6, 3, 2.57), in the plane
+    // of the first crack, beside which lies the uncut face of the other lip.
+    let m = cutter.mesh();
+    let tip = (0..m.nb_vertices())
+        .map(mtcut::mesh::VertexId::from_usize)
+        .find(|&v| {
+            let p = m.position(v);
+            p.y == 3.0 && (p.x - 6.0).abs() < 1e-4 && (p.z - 2.574).abs() < 1e-3
+        });
+    assert!(tip.is_some(), "no crack tip on the first crack's lip");
+}
+
 /// Every phase forced onto all cores (threshold 0) and kept on one (`usize::MAX`): the
 /// same meshes, cut after cut, with the engine's default snapping and with almost none (a
 /// cut then snaps no vertex: a parallel pass over no vertices panicked once).

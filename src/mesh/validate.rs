@@ -58,6 +58,10 @@ pub enum ViolationKind {
     HangingVertex,
     AttributeLength,
     UnusedVertex,
+    /// A vertex of one lip of a crack inside a face of the other lip: a later cut
+    /// subdivided the lips differently. No T-junction (the lips are apart), so only a
+    /// warning.
+    LipsApart,
 }
 
 /// Whether a violation makes the mesh invalid or is only worth knowing.
@@ -70,7 +74,7 @@ pub enum Severity {
 impl ViolationKind {
     pub fn severity(self) -> Severity {
         match self {
-            ViolationKind::UnusedVertex => Severity::Warning,
+            ViolationKind::UnusedVertex | ViolationKind::LipsApart => Severity::Warning,
             _ => Severity::Error,
         }
     }
@@ -94,6 +98,10 @@ impl ViolationKind {
             }
             ViolationKind::AttributeLength => "attribute columns of the wrong length",
             ViolationKind::UnusedVertex => "unused vertices (used by no tet)",
+            ViolationKind::LipsApart => {
+                "crack lip vertices inside a face of the opposite lip (lips subdivided \
+                 differently)"
+            }
         }
     }
 }
@@ -469,7 +477,7 @@ fn check_hanging(
             .collect(),
     );
     // (vertex, face) for every vertex lying on a face it is not part of.
-    let mut hits: Vec<(VertexId, u32)> = boundary
+    let hits: Vec<(VertexId, u32)> = boundary
         .par_iter()
         .enumerate()
         .flat_map_iter(|(fi, f)| {
@@ -498,10 +506,55 @@ fn check_hanging(
             found
         })
         .collect();
+    // The two lips of a crack lie on each other but are not joined: a later cut may
+    // subdivide one lip and not the other (a crack tip on a lip face, where the cut ends
+    // against the earlier crack), leaving a vertex of one lip inside a face of the other.
+    // That is no T-junction, only worth knowing. A vertex is on the opposite lip of face
+    // `f` when a boundary face at it holds a *twin* of a corner of `f` (another vertex at
+    // that corner's position: the copies a cut makes); a vertex hanging in a face of its
+    // own surface is surrounded by that face's corners themselves.
+    let mut apart = vec![false; hits.len()];
+    if !hits.is_empty() {
+        let mut at: Vec<(VertexId, u32)> = Vec::new();
+        let candidates: std::collections::HashSet<VertexId> = hits.iter().map(|h| h.0).collect();
+        for (fi, f) in boundary.iter().enumerate() {
+            for &v in f.iter().filter(|v| candidates.contains(v)) {
+                at.push((v, fi as u32));
+            }
+        }
+        at.sort_unstable();
+        let faces_at = |v: VertexId| {
+            let start = at.partition_point(|x| x.0 < v);
+            at[start..]
+                .iter()
+                .take_while(move |x| x.0 == v)
+                .map(|x| &boundary[x.1 as usize])
+        };
+        for (h, &(v, fi)) in apart.iter_mut().zip(&hits) {
+            let f = &boundary[fi as usize];
+            let twin = |w: VertexId| f.iter().any(|&x| x != w && pos[x.idx()] == pos[w.idx()]);
+            *h = faces_at(v).any(|g| g.iter().any(|&w| w != v && twin(w)));
+        }
+    }
+    let (mut lips, mut hanging) = (Vec::new(), Vec::new());
+    for (h, apart) in hits.into_iter().zip(apart) {
+        if apart { lips.push(h) } else { hanging.push(h) }
+    }
+    lips.sort_unstable();
+    lips.dedup_by_key(|h| h.0);
+    for (v, fi) in lips {
+        r.add(ViolationKind::LipsApart, || {
+            format!(
+                "vertex {} lies on face {} of the other lip",
+                num.vertex(v.0),
+                num.vertex_list(&boundary[fi as usize])
+            )
+        });
+    }
     // One report per vertex, naming the first face it lies on.
-    hits.sort_unstable();
-    hits.dedup_by_key(|h| h.0);
-    for (v, fi) in hits {
+    hanging.sort_unstable();
+    hanging.dedup_by_key(|h| h.0);
+    for (v, fi) in hanging {
         r.add(ViolationKind::HangingVertex, || {
             format!(
                 "vertex {} lies on boundary face {}",
@@ -665,6 +718,22 @@ mod tests {
             }
             e => panic!("unexpected {e}"),
         }
+    }
+
+    #[test]
+    fn lips_of_a_crack_subdivided_differently_are_only_a_warning() {
+        // The T-junction above, the upper tets holding copies of vertices 1, 2 and 3 (6, 7,
+        // 8): a crack along face (1, 2, 3), its upper lip split at m, the lower not.
+        let mut p = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+        p.push(DVec3::new(1.0, 1.0, 1.0));
+        p.push(DVec3::new(0.5, 0.5, 0.0));
+        p.extend([DVec3::X, DVec3::Y, DVec3::Z]);
+        let tets = vec![[0, 1, 2, 3], [6, 4, 5, 8], [5, 4, 7, 8]];
+        let (m, _) = TetMesh::from_arrays(p, tets).expect("valid: the lips are apart");
+        let r = m.validate();
+        assert!(r.is_valid(), "{r}");
+        assert_eq!(r.count(ViolationKind::LipsApart), 1, "{r:?}");
+        assert_eq!(r.count(ViolationKind::HangingVertex), 0, "{r:?}");
     }
 
     /// Points coplanar with a triangle, at exactly representable barycentric coordinates
