@@ -149,6 +149,43 @@ fn sequences_of_cuts_crossing_earlier_cuts() {
     }
 }
 
+/// Parallel slices close together, with the default snapping: a slice bends its crack
+/// towards vertices up to 0.2 of their longest edge away, so the next slices cut across
+/// earlier cracks, through both lips. The two lips are split alike, their vertices ordered
+/// by twin root (`mtcut::cut::split::canonical_order_at`), so no vertex of one lies inside
+/// a face of the other. Ordered by id (a vertex and its copy order differently), the sixth
+/// slice of pinion-coarse left 6 such vertices (and `validate` took them for hanging
+/// vertices then).
+#[test]
+fn parallel_slices_split_both_lips_alike() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pinion-coarse.node");
+    let input = mtcut::io::read_mesh(path).expect("pinion-coarse").0;
+    let volume = input.volume();
+    let mut cutter = Cutter::new(input, CutOptions::DEFAULT).expect("options");
+    for z in [-0.6118, -0.5176, -0.4863, -0.4549, -0.4235, -0.3922] {
+        let corner = |x: f64, y: f64| DVec3::new(x, y, z);
+        let slice = CutPolygon::new(&[
+            corner(-2.0, -2.0),
+            corner(2.0, -2.0),
+            corner(2.0, 2.0),
+            corner(-2.0, 2.0),
+        ])
+        .expect("a square");
+        let r = cutter.cut(&slice).expect("cut");
+        assert!(r.stats.tets_cut > 0, "z = {z} cuts the body");
+        let report = cutter.mesh().validate();
+        assert!(report.is_valid(), "after the slice at z = {z}: {report}");
+        let apart = report.count(ViolationKind::LipsApart);
+        assert_eq!(
+            apart, 0,
+            "after the slice at z = {z}: lips split differently"
+        );
+        let v = cutter.mesh().volume();
+        assert!((v - volume).abs() <= 1e-12 * volume, "z = {z}: volume {v}");
+    }
+}
+
 /// A crack ending against an earlier one: on a Kuhn grid, a scalpel's cut in the plane
 /// y = 3, then one in x + y = 9, whose plane meets the first crack along the body's edge
 /// x = 6 and whose contour crosses that edge at z = 2.57. The second crack ends there with
@@ -502,6 +539,7 @@ fn batches_and_order_do_not_change_the_points() {
     let mut rng = Rng(31337);
     let polygon = random_polygon(input, Kind::Partial, &mut rng);
     let opts = CutOptions::DEFAULT;
+    let roots = mtcut::cut::split::twin_roots(input.positions());
     let run = |order: &[usize], batches: usize| {
         let mut scratch = CutScratch::new();
         let mut s = CutSession::new(
@@ -526,7 +564,7 @@ fn batches_and_order_do_not_change_the_points() {
         let mut children: Vec<(usize, Vec<[u32; 4]>)> = Vec::new();
         for ((&k, t), c) in order.iter().zip(&tets).zip(&classes) {
             let mut ch = Children::new();
-            if split_tet(&s, t, c, &mut ch) {
+            if split_tet(&s, t, c, Some(&roots), &mut ch) {
                 let mut v: Vec<[u32; 4]> =
                     ch.tets[..ch.len].iter().map(|x| x.map(|y| y.0)).collect();
                 v.sort_unstable();

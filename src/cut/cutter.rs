@@ -11,7 +11,7 @@ use super::components::Components;
 use super::options::{CutError, CutOptions, Scheme};
 use super::pockets;
 use super::report::{CutResult, CutStats, CutTimes, SplitRecord};
-use super::split::{Children, split_tet};
+use super::split::{Children, extend_twin_roots, split_tet, twin_roots};
 use super::tables::{NEG, ON, POS, Side};
 use super::unglue::{
     Copies, LinkSlots, ParentAt, ParentPlan, PlanScratch, StarEntry, entry_at_vertex,
@@ -60,6 +60,11 @@ pub fn vertex_scales(mesh: &TetMesh) -> Vec<f64> {
 pub struct Cutter {
     mesh: TetMesh,
     scales: Vec<f64>,
+    /// The twin root of each vertex, which orders the vertices of split tets
+    /// ([`canonical_order_at`](super::split::canonical_order_at)): the lowest id at its
+    /// position when the cutter was made, kept up to date by each cut. `None` for an MT
+    /// frontier, ordered by id as the MT cut orders it.
+    roots: Option<Vec<u32>>,
     bvh: TetBvh,
     scratch: CutScratch,
     state_cache: StateCache,
@@ -260,7 +265,8 @@ impl Cutter {
                 expected: "one flag per vertex",
             });
         }
-        let mut cutter = Cutter::prepare_with(mesh, scales, options.with_continue_cracks(true));
+        let options = options.with_continue_cracks(true);
+        let mut cutter = Cutter::prepare_with(mesh, scales, options, false);
         cutter.tips = None;
         cutter.crack = Some(crack);
         Ok(cutter)
@@ -269,13 +275,20 @@ impl Cutter {
     /// [`new`](Self::new) with options already checked.
     fn prepare(mesh: TetMesh, options: CutOptions) -> Cutter {
         let scales = vertex_scales(&mesh);
-        Cutter::prepare_with(mesh, scales, options)
+        Cutter::prepare_with(mesh, scales, options, true)
     }
 
-    fn prepare_with(mut mesh: TetMesh, scales: Vec<f64>, options: CutOptions) -> Cutter {
+    /// Prepares the cutter; `twin_order`: split tets ordered by twin root (else by id).
+    fn prepare_with(
+        mut mesh: TetMesh,
+        scales: Vec<f64>,
+        options: CutOptions,
+        twin_order: bool,
+    ) -> Cutter {
         super::classify::build_tables();
         let start = Instant::now();
         let bvh = TetBvh::build(mesh.positions(), &scales, mesh.tets());
+        let roots = twin_order.then(|| twin_roots(mesh.positions()));
         let valence = if options.continue_cracks {
             Vec::new()
         } else {
@@ -299,6 +312,7 @@ impl Cutter {
         let mut cutter = Cutter {
             mesh,
             scales,
+            roots,
             bvh,
             scratch: CutScratch::new(),
             state_cache: StateCache::default(),
@@ -375,6 +389,9 @@ impl Cutter {
     pub fn reserve(&mut self, tets: usize, vertices: usize) {
         self.mesh.reserve(tets, vertices);
         self.scales.reserve(vertices);
+        if let Some(roots) = self.roots.as_mut() {
+            roots.reserve(vertices);
+        }
         if !self.valence.is_empty() {
             self.valence.reserve(vertices);
         }
@@ -387,7 +404,13 @@ impl Cutter {
     /// spare time between cuts keeps reallocation (a copy of every array) out of them.
     pub fn keep_room(&mut self, fraction: f64) {
         let (tets, vertices) = self.mesh.spare();
-        let mut vertices = vertices.min(self.scales.capacity() - self.scales.len());
+        let mut vertices = vertices
+            .min(self.scales.capacity() - self.scales.len())
+            .min(
+                self.roots
+                    .as_ref()
+                    .map_or(usize::MAX, |r| r.capacity() - r.len()),
+            );
         if !self.valence.is_empty() {
             vertices = vertices.min(self.valence.capacity() - self.valence.len());
         }
@@ -589,6 +612,7 @@ impl Cutter {
         // Step 2a: classify every edge and face once.
         let t = Instant::now();
         let positions = self.mesh.positions();
+        let roots = self.roots.as_deref();
         let mut session = CutSession::new(
             polygon,
             opts.snap,
@@ -616,7 +640,7 @@ impl Cutter {
         let split_one = |session: &CutSession<'_>, k: usize, class: &TetClass| -> Children {
             let mut c = Children::new();
             match &bielser {
-                None => split_tet(session, &tets[k], class, &mut c),
+                None => split_tet(session, &tets[k], class, roots, &mut c),
                 Some((nodes, _)) => nodes.split(&tets[k], class, &mut c),
             };
             c
@@ -949,6 +973,10 @@ impl Cutter {
                     }
                 }
             }
+        }
+        if let Some(roots) = self.roots.as_mut() {
+            extend_twin_roots(roots, origins.iter().copied());
+            debug_assert_eq!(roots.len(), self.mesh.nb_vertices());
         }
         debug_assert!(
             !keep_valences

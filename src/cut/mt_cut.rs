@@ -838,7 +838,8 @@ impl MtCutter {
         let split_into =
             |session: &CutSession<'_>, k: usize, class: &TetClass, children: &mut Vec<Children>| {
                 let mut c = Children::new();
-                if split_tet(session, &tets[k], class, &mut c) {
+                // Ordered by id (see `canonical_order_at`'s note on MTs).
+                if split_tet(session, &tets[k], class, None, &mut c) {
                     children.push(c);
                     (children.len() - 1) as u32
                 } else {

@@ -22,7 +22,7 @@ pub struct Children {
     pub case: CutCase,
     /// The table configuration the children come from ([`NO_CONFIG`]: not from the
     /// tables), and the canonical index of each of the parent's local vertices (see
-    /// [`canonical_order`]): what [`super::unglue`] looks the entry up by.
+    /// [`canonical_order_at`]): what [`super::unglue`] looks the entry up by.
     pub config: u16,
     pub rank: [u8; 4],
     pub len: usize,
@@ -51,23 +51,99 @@ impl Children {
     }
 }
 
-/// The canonical order of a tet: `perm[i]` is the local index of the `i`-th smallest
-/// vertex id; `odd` tells whether that permutation is odd (the sorted tet is then
-/// negatively oriented).
+/// The canonical order of a tet by id: `perm[i]` is the local index of the `i`-th smallest
+/// vertex id; `odd` tells whether that permutation is odd (the 1:17 scheme's, and an
+/// MT's, see [`canonical_order_at`]).
 #[inline]
 pub fn canonical_order(tet: &Tet) -> ([usize; 4], bool) {
+    sort_order(tet.map(|v| v.0))
+}
+
+/// The canonical order of a tet for the tables: `perm[i]` is the local index of the
+/// `i`-th vertex in the global order of the shared-face rule (§4.2, Fig. 8b), `odd` tells
+/// whether that permutation is odd (the sorted tet is then negatively oriented).
+///
+/// That global order is by *twin root* (`roots[v]`: the lowest id among a vertex and the
+/// copies cuts made of it, which share its position: see [`twin_roots`]), ids breaking
+/// ties; for a vertex no cut copied the root is its own id, so the order is the ids'
+/// everywhere but on the lips of cracks. Any global order makes neighbours agree on a shared face; this one also makes
+/// the two lips of a crack agree. They are copies of each other, whose ids differ, so by
+/// ids alone a later cut crossing both lips could split a lip face along one diagonal and
+/// its twin on the other lip along the other: a cut after that, crossing those
+/// diagonals, left a vertex of one lip inside a face of the other. Six parallel cuts of
+/// pinion-coarse 0.03 apart did so with the default options (tests/cut_engine.rs,
+/// `parallel_slices_split_both_lips_alike`). Two vertices of one tet never share a
+/// root (they would share a position), so the ids never decide within a valid tet.
+///
+/// `roots` `None` orders by id, as an MT's cut does (and the cut of a current mesh
+/// extracted from it, which must decide alike): a cutter made of a saved MT must decide as
+/// the one that cut it, and the saved MT has positions, not which vertex a cut copied —
+/// positions do not tell copies apart from cut points of several levels that land on one
+/// position (collinear edges, measured on pinion). An MT's lips stay in their planes (its
+/// snapping is at most 1e-4), and where a later cut subdivides them differently,
+/// `TetMesh::validate` tells the lips apart (a warning, `ViolationKind::LipsApart`).
+#[inline]
+pub fn canonical_order_at(tet: &Tet, roots: Option<&[u32]>) -> ([usize; 4], bool) {
+    match roots {
+        Some(roots) => sort_order(tet.map(|v| (roots[v.idx()], v.0))),
+        None => canonical_order(tet),
+    }
+}
+
+/// The twin root of every vertex (see [`canonical_order_at`]): the lowest id among the
+/// vertices at its position (a vertex and the copies cuts made of it share one, bit for
+/// bit). Cuts extend the list as they add vertices ([`extend_twin_roots`]).
+pub fn twin_roots(positions: &[crate::geom::DVec3]) -> Vec<u32> {
+    let mut order: Vec<u32> = (0..positions.len() as u32).collect();
+    let key = |i: u32| positions[i as usize].to_array().map(f64::to_bits);
+    order.sort_unstable_by_key(|&i| (key(i), i));
+    let mut roots: Vec<u32> = (0..positions.len() as u32).collect();
+    for w in order.windows(2) {
+        if key(w[0]) == key(w[1]) {
+            roots[w[1] as usize] = roots[w[0] as usize];
+        }
+    }
+    roots
+}
+
+/// Appends the twin roots of the vertices a cut added, numbered from `roots.len()` in the
+/// order of their `origins`: a copy takes its original's root, a cut point's negative copy
+/// its positive copy's (numbered just before it, [`CutSession::allocate`]), and every other
+/// new vertex its own id.
+pub fn extend_twin_roots(
+    roots: &mut Vec<u32>,
+    origins: impl IntoIterator<Item = super::classify::VertexOrigin>,
+) {
+    use super::classify::VertexOrigin;
+    for o in origins {
+        let id = roots.len();
+        let root = match o {
+            VertexOrigin::Edge {
+                positive: false, ..
+            } => roots[id - 1],
+            VertexOrigin::Copy { of } => roots[of.idx()],
+            _ => id as u32,
+        };
+        roots.push(root);
+    }
+}
+
+/// `perm[i]` is the index of the `i`-th smallest of `keys` (distinct), and whether that
+/// permutation is odd.
+#[inline]
+fn sort_order<K: PartialOrd>(keys: [K; 4]) -> ([usize; 4], bool) {
     let mut perm = [0usize; 4];
     let mut inversions = 0;
     for i in 0..4 {
         let mut rank = 0;
         for j in 0..4 {
-            if tet[j] < tet[i] {
+            if keys[j] < keys[i] {
                 rank += 1;
             }
         }
         perm[rank] = i;
         for j in i + 1..4 {
-            if tet[j] < tet[i] {
+            if keys[j] < keys[i] {
                 inversions += 1;
             }
         }
@@ -83,17 +159,20 @@ impl Default for Children {
 
 /// Writes into `out` the children replacing `tet` (positively oriented, global ids)
 /// classified as `class`, whose new points `session` has allocated. Returns false (and
-/// leaves `out` alone) when the tet is not split.
+/// leaves `out` alone) when the tet is not split. `roots` holds the twin root of every
+/// vertex of the mesh before the cut, which orders the tet's vertices (`None`: their ids;
+/// [`canonical_order_at`]).
 pub fn split_tet(
     session: &CutSession<'_>,
     tet: &Tet,
     class: &TetClass,
+    roots: Option<&[u32]>,
     out: &mut Children,
 ) -> bool {
     if !class.is_split() {
         return false;
     }
-    let (perm, odd) = canonical_order(tet);
+    let (perm, odd) = canonical_order_at(tet, roots);
     let states = [
         class.states[perm[0]],
         class.states[perm[1]],

@@ -5,7 +5,8 @@
 //!
 //! # What an entry must satisfy (paper §4.2)
 //!
-//! For a configuration of the canonical tet (vertices sorted by id, see [`super::tables`]):
+//! For a configuration of the canonical tet (vertices sorted in the global order, see
+//! [`super::tables`]):
 //!
 //! * the children tile the tet: no overlap, no gap, volumes adding up;
 //! * each face of the tet is subdivided exactly as the neighbour across it subdivides it

@@ -3,8 +3,10 @@
 //!
 //! # Canonical tetrahedron
 //!
-//! A tet is looked up with its four vertices **sorted by global id** (local vertex `i` is
-//! the `i`-th smallest id). The shared-face rule of the paper (a quadrilateral face takes
+//! A tet is looked up with its four vertices **sorted in a global order** (local vertex `i`
+//! is the `i`-th smallest; the order of ids, except that on a plain mesh a vertex a cut
+//! copied sorts as the vertex it was copied from, so that the two lips of a crack sort
+//! alike: [`super::split::canonical_order_at`]). The shared-face rule of the paper (a quadrilateral face takes
 //! the diagonal at its lowest vertex, Fig. 8b) then depends only on local indices, so one
 //! table entry per configuration suffices. When sorting is an odd permutation the sorted
 //! tet is negatively oriented; every child is then mirrored (two vertices swapped), which
