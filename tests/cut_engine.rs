@@ -233,6 +233,57 @@ fn a_crack_tip_on_one_lip_of_an_earlier_crack_is_valid() {
     assert!(tip.is_some(), "no crack tip on the first crack's lip");
 }
 
+/// A plane along grid edges with a diagonal normal (x − y = 1) through a Kuhn grid, after
+/// two other cuts, with the default options. C's corners, computed in floating point, are
+/// not exactly coplanar, so the grid edge (4, 3, 4)–(4, 3, 5), in the plane but 3 units
+/// from C, has ends on either side of it by rounding. The exact crossing test's
+/// orientations, each made with a slightly different plane, all put its crossing inside
+/// C: it was cut in the tets the query reached and left whole in the others, and the mesh
+/// was left with non-manifold edges. An edge beyond one of C's edge lines is not cut.
+#[test]
+fn an_edge_lying_in_the_plane_far_from_c_is_not_cut() {
+    let mut cutter = Cutter::new(kuhn_grid(6), CutOptions::DEFAULT).expect("options");
+    let polygons = [
+        [
+            [11.203357165426215, -1.194234566634763, 0.7966428345737855],
+            [11.203357165426215, 0.5599903339341115, 0.7966428345737855],
+            [5.243948567086509, 0.5599903339341115, 6.756051432913491],
+            [5.243948567086509, -1.194234566634763, 6.756051432913491],
+        ],
+        [
+            [4.621775770263644, 5.1882094097225835, 1.811790590277416],
+            [4.621775770263644, 8.937179291215493, -1.9371792912154921],
+            [-4.523936646844668, 8.937179291215493, -1.9371792912154921],
+            [-4.523936646844668, 5.1882094097225835, 1.811790590277416],
+        ],
+        [
+            [3.570094865175389, 2.5700948651753883, -7.656265604737321],
+            [8.151435061419807, 7.151435061419807, -1.1772721653634481],
+            [5.521885042394584, 4.521885042394585, 2.5414731344804524],
+            [
+                0.9405448461501664,
+                -0.059455153849834436,
+                -3.9375203048934204,
+            ],
+        ],
+    ];
+    for (k, corners) in polygons.iter().enumerate() {
+        let polygon = CutPolygon::new(&corners.map(DVec3::from_array)).expect("polygon");
+        cutter.cut(&polygon).expect("cut");
+        assert_valid(cutter.mesh(), &format!("after cut {k}"));
+    }
+    // The edge is still whole: some tet holds both its ends.
+    let m = cutter.mesh();
+    let at = |p: [f64; 3]| {
+        (0..m.nb_vertices())
+            .map(mtcut::mesh::VertexId::from_usize)
+            .find(|&v| m.position(v) == DVec3::from_array(p))
+            .expect("grid vertex")
+    };
+    let (a, b) = (at([4.0, 3.0, 4.0]), at([4.0, 3.0, 5.0]));
+    assert!(m.tets().iter().any(|t| t.contains(&a) && t.contains(&b)));
+}
+
 /// Every phase forced onto all cores (threshold 0) and kept on one (`usize::MAX`): the
 /// same meshes, cut after cut, with the engine's default snapping and with almost none (a
 /// cut then snaps no vertex: a parallel pass over no vertices panicked once).
