@@ -497,6 +497,76 @@ fn a_new_point_rounding_past_a_fragments_box_grows_the_box() {
     assert!(report.is_valid(), "{report}");
 }
 
+/// A crack reaching a vertex of an earlier crack in another plane: random partial cuts
+/// through the vertices of a Kuhn grid, the fourth (the plane x − y = −2) ending 0.4 short
+/// of the vertex (0, 2, 5), which lies in its plane on the lip of the second (x + z = 5).
+/// Its crack faces reach that vertex (an earlier crack's vertex on the plane is taken as
+/// on it) and divide the vertex's tets on that lip: the finest mesh would be pinched
+/// there, two fans of boundary faces at one point. Before, the cut returned Ok with that
+/// mesh (`Mt::validate` found it, the cut's own checks did not). It is refused, the MT
+/// unchanged and valid.
+#[test]
+fn a_crack_dividing_an_earlier_cracks_vertex_is_refused() {
+    use mtcut::geom::DVec3;
+    let grid = cut_common::kuhn_grid(6);
+    let mt = Mt::build(&grid, &mtcut::mt::BuildOptions::DEFAULT)
+        .expect("built")
+        .0;
+    let polygons = [
+        [
+            [7.597082354237791, -1.804782385384828, -1.2922999688529617],
+            [5.912513458469667, 4.482114322472012, -5.894627780941678],
+            [-2.9537305887318404, 6.857817254816904, 0.5959133339149352],
+            [-1.2691616929637157, 0.5709205469600644, 5.198241146003651],
+        ],
+        [
+            [3.985941304701671, 1.4087722584450768, 1.014058695298329],
+            [3.985941304701671, 6.799398784507278, 1.014058695298329],
+            [-0.36332520835701043, 6.799398784507278, 5.36332520835701],
+            [-0.36332520835701043, 1.4087722584450768, 5.36332520835701],
+        ],
+        [
+            [10.316142358697967, -4.316142358697967, 2.066306827682638],
+            [7.836538439361997, -1.8365384393619955, -1.4403826643557736],
+            [0.431781343444102, 5.568218656555898, 9.031525246769727],
+            [2.911385262780072, 3.0886147372199275, 12.538214738808138],
+        ],
+        [
+            [-0.733696722446735, 1.2663032775532632, -5.6629845057772314],
+            [4.070156083427588, 6.070156083427589, 1.130689283934286],
+            [0.8829099466969783, 2.882909946696979, 5.638135997119969],
+            [
+                -3.9209428591773454,
+                -1.9209428591773472,
+                -1.1555377925915487,
+            ],
+        ],
+    ]
+    .map(|c| CutPolygon::new(&c.map(DVec3::from_array)).expect("polygon"));
+    let mut c = MtCutter::new(mt, MtCutter::DEFAULT_OPTIONS).expect("options");
+    for (k, p) in polygons[..3].iter().enumerate() {
+        c.cut(p).expect("cut");
+        let report = c.mt().validate();
+        assert!(report.is_valid(), "after cut {k}: {report}");
+    }
+    let before = c.mt().to_bytes();
+    match c.cut(&polygons[3]) {
+        Err(CutError::MtInconsistent { detail, .. }) => {
+            assert!(detail.contains("finest mesh would be pinched"), "{detail}");
+        }
+        Ok(_) => {
+            let report = c.mt().validate();
+            panic!("expected a refusal; the cut was kept: {report}");
+        }
+        Err(e) => panic!("expected a refusal for the pinch, got {e}"),
+    }
+    assert!(
+        c.mt().to_bytes() == before,
+        "the refused cut changed the MT"
+    );
+    assert!(c.mt().validate().is_valid());
+}
+
 /// Three cuts straight through fandisk: the MT should hold one independent component per
 /// piece the cuts leave (the same at the finest and the coarsest level).
 #[test]

@@ -133,6 +133,12 @@
 //!   live resolution, by a fold's fallback cut, [`super::live`], which also pinched the
 //!   coarsest mesh before it was analysed; that polygon, close to an earlier cut's plane,
 //!   is now cut in that plane, and valid).
+//! * A crack reaching a vertex of an earlier crack in another plane, on this cut's plane
+//!   just outside C (such a vertex is not cut), can divide that vertex's tets on one lip
+//!   and pinch the finest or the coarsest mesh there. The cut is then refused
+//!   ([`CutError::MtInconsistent`], before the MT changes); the plain-mesh engine, given
+//!   the same cuts, ends that crack short of the vertex. Found by random partial cuts
+//!   through the vertices of a Kuhn grid (tests/mtcut_cut.rs).
 //! * Closing the MT after a cut (the pool merged back into arcs after a read-only check
 //!   of its order, levels and arc lists derived again, the vertex ids of every tet
 //!   checked) costs time in proportion to the pool and the DAG, not to the cut: the DAG
@@ -636,6 +642,44 @@ impl MtCutter {
         result
     }
 
+    /// Calls `test` on every pool tet (ghosts included) of a fragment whose box meets
+    /// `box_meets`, at rest: the collapse fragments through the hierarchy (its boxes grown
+    /// to stay conservative, see `fragment_bvh`), each checked by its current box. A tet
+    /// is reached once: through its creator, or, created by a root, through its destroyer
+    /// (whose floor holds it) or as one of the root's tets in the coarsest mesh.
+    fn tets_meeting(&self, mt: &Mt, box_meets: impl Fn(&Aabb) -> bool, test: impl FnMut(TetId)) {
+        let mut test = test;
+        let grow = self.fragment_bvh_slack;
+        let mut hits: Vec<FragmentId> = Vec::new();
+        self.fragment_bvh.query(
+            |b| {
+                box_meets(&Aabb {
+                    min: b.min - grow,
+                    max: b.max + grow,
+                })
+            },
+            |hit| {
+                let mut f = hit.fragment.0;
+                while f != NONE {
+                    if box_meets(&mt.fragment_bbox(FragmentId(f))) {
+                        hits.push(FragmentId(f));
+                    }
+                    f = self.split_off[f as usize];
+                }
+            },
+        );
+        for &g in &hits {
+            mt.created_tets(g).for_each(&mut test);
+        }
+        for &r in mt.roots() {
+            for &g in hits.iter().chain(mt.drains()) {
+                if let Some(a) = mt.arc_between(r, g) {
+                    mt.arc_tets(a).map(TetId::from_usize).for_each(&mut test);
+                }
+            }
+        }
+    }
+
     fn mt_mut(&mut self) -> &mut Mt {
         self.mt
             .as_mut()
@@ -750,40 +794,7 @@ impl MtCutter {
                 }
             }
         } else {
-            // Collapse fragments through the hierarchy (its boxes grown to stay
-            // conservative, see `fragment_bvh`), each checked by its current box. A tet
-            // is reached once: through its creator, or, created by a root, through its
-            // destroyer (whose floor holds it) or as one of the root's tets in the
-            // coarsest mesh.
-            let grow = self.fragment_bvh_slack;
-            let mut hits: Vec<FragmentId> = Vec::new();
-            self.fragment_bvh.query(
-                |b| {
-                    box_meets(&Aabb {
-                        min: b.min - grow,
-                        max: b.max + grow,
-                    })
-                },
-                |hit| {
-                    let mut f = hit.fragment.0;
-                    while f != NONE {
-                        if box_meets(&mt.fragment_bbox(FragmentId(f))) {
-                            hits.push(FragmentId(f));
-                        }
-                        f = self.split_off[f as usize];
-                    }
-                },
-            );
-            for &g in &hits {
-                mt.created_tets(g).for_each(&mut test);
-            }
-            for &r in mt.roots() {
-                for &g in hits.iter().chain(mt.drains()) {
-                    if let Some(a) = mt.arc_between(r, g) {
-                        mt.arc_tets(a).map(TetId::from_usize).for_each(&mut test);
-                    }
-                }
-            }
+            self.tets_meeting(mt, box_meets, &mut test);
         }
         // Pool order, as a pass over the fragments in id order finds them.
         found.sort_unstable_by_key(|&(t, _)| t);
@@ -1257,6 +1268,159 @@ impl MtCutter {
                         for f in faces_of(&ch.tets[c]) {
                             face_side.insert(f, (ch.sides[c], ch.tets[c]));
                         }
+                    }
+                }
+            }
+        }
+        // An earlier crack's vertex on this plane outside C (`OUT`) is not cut, yet a crack
+        // face of this cut can reach it: a crack continued in its plane joins the earlier
+        // one there, the vertex's tets all on one side. Where the earlier crack lies in
+        // another plane, the vertex has tets on both sides, and this crack's faces can
+        // divide its tets on one lip in two: that mesh is pinched there, two fans of
+        // boundary faces meeting at one point, which the fragments' floors and ceilings do
+        // not show (measured: random partial cuts through the vertices of a Kuhn grid, the
+        // plane x − y = −2 reaching a vertex of the earlier crack x + z = 5). At each such
+        // vertex the finest and the coarsest meshes are checked (the whole star, found
+        // through the fragment hierarchy), and such a cut refused before the MT changes.
+        {
+            let is_out = |v: &VertexId| out_vertices.binary_search(v).is_ok();
+            let level_bits = |t: TetId| {
+                u8::from(mt.fragment_kind(mt.tet_creator(t)) == FragmentKind::Root)
+                    | u8::from(mt.fragment_kind(mt.tet_destroyer(t)) == FragmentKind::Drain) << 1
+            };
+            // The candidates holding an `OUT` vertex, in the finest or the coarsest mesh
+            // (levels: bit 0, bit 1).
+            let holders: Vec<(usize, u8)> = (0..tets.len())
+                .filter(|&k| finest[k] || coarsest[k])
+                .filter(|&k| tets[k].iter().any(is_out))
+                .map(|k| (k, u8::from(finest[k]) | u8::from(coarsest[k]) << 1))
+                .collect();
+            let side_bits = |s: Side| match s {
+                Side::Positive => 1u8,
+                Side::Negative => 2,
+                Side::Straddle => 3,
+            };
+            // Calls `f(corner, vertex index in out_vertices, tet, side)` for each tet
+            // candidate `k` becomes that holds its `OUT` vertex at `corner`, before the
+            // tets take copies (which changes no face's being on the crack: a copy, like
+            // its vertex, is on the cut).
+            let each_at_out = |k: usize, f: &mut dyn FnMut(usize, usize, &Tet, Side)| {
+                for (j, v) in tets[k].iter().enumerate() {
+                    let Ok(i) = out_vertices.binary_search(v) else {
+                        continue;
+                    };
+                    match child_of[k] {
+                        NONE => f(j, i, &tets[k], unsplit_side(k)),
+                        c => {
+                            let ch = &children[c as usize];
+                            for c in (0..ch.len).filter(|&c| ch.tets[c].contains(v)) {
+                                let corner = ch.tets[c].iter().position(|x| x == v).unwrap_or(0);
+                                f(corner, i, &ch.tets[c], ch.sides[c]);
+                            }
+                        }
+                    }
+                }
+            };
+            // Per `OUT` vertex and level: the sides of the tets holding it (bit 0 positive,
+            // bit 1 negative).
+            let mut sides = vec![[0u8; 2]; out_vertices.len()];
+            for &(k, levels) in &holders {
+                each_at_out(k, &mut |_, i, _, side| {
+                    for l in (0..2).filter(|l| levels >> l & 1 != 0) {
+                        sides[i][l] |= side_bits(side);
+                    }
+                });
+            }
+            // Those with tets on both sides where a crack face of this cut reaches them,
+            // as (vertex, level bit).
+            let mut check: Vec<(VertexId, u8)> = Vec::new();
+            if sides.iter().flatten().any(|&s| s == 3) {
+                for &(k, levels) in &holders {
+                    each_at_out(k, &mut |j, i, t, _| {
+                        for l in (0..2).filter(|l| levels >> l & 1 != 0 && sides[i][*l] == 3) {
+                            // The faces at corner j: all but the one opposite it.
+                            let reached = TET_FACES
+                                .iter()
+                                .enumerate()
+                                .any(|(f, lf)| f != j && on_crack(lf.map(|x| t[x])));
+                            if reached {
+                                check.push((out_vertices[i], 1 << l));
+                            }
+                        }
+                    });
+                }
+                check.sort_unstable();
+                check.dedup();
+            }
+            if !check.is_empty() {
+                let mut vertices: Vec<VertexId> = check.iter().map(|c| c.0).collect();
+                vertices.dedup();
+                let rest = mt.positions();
+                let near = Aabb::from_points(vertices.iter().map(|v| &rest[v.idx()]));
+                // (vertex, tet) for every real tet holding one of them.
+                let mut holding: Vec<(VertexId, TetId)> = Vec::new();
+                self.tets_meeting(
+                    mt,
+                    |b| b.intersects(&near),
+                    |t| {
+                        let tet = mt.tet(t);
+                        if tet[3] != GHOST {
+                            for &v in tet.iter().filter(|v| vertices.binary_search(v).is_ok()) {
+                                holding.push((v, t));
+                            }
+                        }
+                    },
+                );
+                holding.sort_unstable();
+                // The positions `for_side` reads for a turning tip in a tet it has no
+                // decision for (the pool's, new vertices included), made if needed.
+                let at_rest: std::cell::OnceCell<Vec<DVec3>> = std::cell::OnceCell::new();
+                let at = || -> &[DVec3] {
+                    if turn.is_empty() {
+                        return positions;
+                    }
+                    at_rest.get_or_init(|| {
+                        let mut p = positions.to_vec();
+                        p.extend(origin_positions(positions, &origins));
+                        p.extend(copies.iter().map(|v| positions[v.idx()]));
+                        p
+                    })
+                };
+                for &(v, bit) in &check {
+                    let from = holding.partition_point(|h| h.0 < v);
+                    let star_tets = holding[from..].iter().take_while(|h| h.0 == v).map(|h| h.1);
+                    let mut star: Vec<(Tet, Side)> = Vec::new();
+                    for t in star_tets.filter(|&t| level_bits(t) & bit != 0) {
+                        match cand.binary_search(&t) {
+                            Ok(k) => {
+                                let became: Vec<(Tet, Side)> = match child_of[k] {
+                                    NONE => vec![(tets[k], unsplit_side(k))],
+                                    i => {
+                                        let ch = &children[i as usize];
+                                        (0..ch.len).map(|c| (ch.tets[c], ch.sides[c])).collect()
+                                    }
+                                };
+                                for (c, side) in became {
+                                    let c = for_side(c, side, &c, at());
+                                    if c.contains(&v) {
+                                        star.push((c, side));
+                                    }
+                                }
+                            }
+                            Err(_) => star.push((mt.tet(t), Side::Positive)),
+                        }
+                    }
+                    if tip_fans(v, star.into_iter(), &|_, _, _| false)[0] > 1 {
+                        let owner = holding[from].1;
+                        return Err(CutError::MtInconsistent {
+                            fragment: mt.tet_creator(owner).idx(),
+                            detail: format!(
+                                "its {} mesh would be pinched at vertex {}: this cut's crack \
+                                 reaches it, on an earlier crack, and divides its tets",
+                                if bit == 1 { "finest" } else { "coarsest" },
+                                v.0
+                            ),
+                        });
                     }
                 }
             }
