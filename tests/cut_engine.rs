@@ -284,6 +284,63 @@ fn an_edge_lying_in_the_plane_far_from_c_is_not_cut() {
     assert!(m.tets().iter().any(|t| t.contains(&a) && t.contains(&b)));
 }
 
+/// Seeded sequences of partial cuts through a Kuhn grid's vertices (or half-way between
+/// them), normals along the axes and the diagonals, with the default options: after every
+/// cut the mesh is valid (crack lips apart allowed). Degenerate on purpose: planes hold
+/// grid vertices, edges and faces, and cross earlier cracks along them. A cut may be
+/// refused (a flat child); none may leave an invalid mesh.
+#[test]
+fn random_partial_cuts_through_grid_vertices_keep_the_grid_valid() {
+    const RUNS: u64 = 200;
+    let n = 6;
+    let grid = kuhn_grid(n);
+    let normals = [
+        DVec3::X,
+        DVec3::Y,
+        DVec3::Z,
+        DVec3::new(1.0, 1.0, 0.0),
+        DVec3::new(0.0, 1.0, 1.0),
+        DVec3::new(1.0, 0.0, 1.0),
+        DVec3::new(1.0, -1.0, 0.0),
+        DVec3::new(1.0, 1.0, 1.0),
+    ]
+    .map(DVec3::normalize);
+    let (mut cuts, mut refused) = (0, 0);
+    for seed in 0..RUNS {
+        let mut rng = Rng(seed * 7919 + 13);
+        let mut cutter = Cutter::new(grid.clone(), CutOptions::DEFAULT).expect("options");
+        for k in 0..10 {
+            let normal = normals[rng.below(normals.len())];
+            let mut at = || rng.below(n + 1) as f64;
+            let mut p0 = DVec3::new(at(), at(), at());
+            if rng.unit() < 0.3 {
+                p0 += DVec3::splat(0.5);
+            }
+            let u = normal.any_orthonormal_vector();
+            let w = normal.cross(u);
+            let (a0, a1) = (-rng.range(0.0, 8.0), rng.range(0.0, 8.0));
+            let (b0, b1) = (-rng.range(0.0, 8.0), rng.range(0.0, 8.0));
+            let corners = [(a0, b0), (a1, b0), (a1, b1), (a0, b1)].map(|(a, b)| p0 + u * a + w * b);
+            let Ok(polygon) = CutPolygon::new(&corners) else {
+                continue;
+            };
+            match cutter.cut(&polygon) {
+                Ok(_) => cuts += 1,
+                Err(CutError::FlatChild { .. }) => {
+                    refused += 1;
+                    break;
+                }
+                Err(e) => panic!("seed {seed}, cut {k}: {e}"),
+            }
+            assert_valid(cutter.mesh(), &format!("seed {seed}, cut {k}"));
+        }
+    }
+    assert!(
+        cuts > 8 * RUNS as usize,
+        "{cuts} cuts made, {refused} refused"
+    );
+}
+
 /// Every phase forced onto all cores (threshold 0) and kept on one (`usize::MAX`): the
 /// same meshes, cut after cut, with the engine's default snapping and with almost none (a
 /// cut then snaps no vertex: a parallel pass over no vertices panicked once).

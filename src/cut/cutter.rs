@@ -21,7 +21,7 @@ use crate::geom::{CutPolygon, DVec3, Sign};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::TET_EDGES;
 use crate::mesh::{Attribute, Attributes, Tet, TetId, TetMesh, VertexId};
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::time::{Duration, Instant};
 
 /// The per-tet column marking tets created by cuts: the 1-based number of the cut that
@@ -1221,7 +1221,8 @@ pub(crate) fn with_twins(
 }
 
 /// Leaves `vertices` (sorted, distinct), snapped so far, unsnapped: each takes the state
-/// [`unsnapped_state`] gives it in every candidate of `tets` using it (in `states`), and
+/// [`unsnapped_state`] gives it (its twins among them the same, from all their tets) in
+/// every candidate of `tets` using it (in `states`), and
 /// the session forgets the records made with it. Returns the candidates touched (sorted,
 /// distinct), to be classified again. Shared with the MT cut.
 pub(crate) fn unsnap(
@@ -1233,7 +1234,17 @@ pub(crate) fn unsnap(
     states: &mut [[u8; 4]],
 ) -> Vec<usize> {
     debug_assert!(vertices.windows(2).all(|w| w[0] < w[1]));
-    // (vertex index, candidate, corner), grouped by vertex: one pass over the candidates.
+    // Twins (copies at one position, one per lip of an earlier crack) take one state, from
+    // all their tets: decided apart, each by its own lip's neighbours, one lip's edge from
+    // it could be crossed and the coincident edge of the other lip not, leaving a cut
+    // point of one lip inside a face of the other.
+    let mut twin_group: Vec<usize> = (0..vertices.len()).collect();
+    let mut first_at: HashMap<[u64; 3], usize, FxBuild> = HashMap::default();
+    for (i, v) in vertices.iter().enumerate() {
+        let key = positions[v.idx()].to_array().map(f64::to_bits);
+        twin_group[i] = *first_at.entry(key).or_insert(i);
+    }
+    // (twin group, candidate, corner), grouped: one pass over the candidates.
     let mut uses: Vec<(usize, usize, usize)> = Vec::new();
     let (Some(&lo), Some(&hi)) = (vertices.first(), vertices.last()) else {
         return Vec::new();
@@ -1242,7 +1253,7 @@ pub(crate) fn unsnap(
         for (j, v) in tet.iter().enumerate() {
             if (lo..=hi).contains(v) {
                 if let Ok(i) = vertices.binary_search(v) {
-                    uses.push((i, k, j));
+                    uses.push((twin_group[i], k, j));
                 }
             }
         }
