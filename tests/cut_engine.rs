@@ -285,12 +285,21 @@ fn an_edge_lying_in_the_plane_far_from_c_is_not_cut() {
 }
 
 /// Seeded sequences of partial cuts through a Kuhn grid's vertices (or half-way between
-/// them), normals along the axes and the diagonals, with the default options: after every
-/// cut the mesh is valid (crack lips apart allowed). Degenerate on purpose: planes hold
-/// grid vertices, edges and faces, and cross earlier cracks along them. A cut may be
-/// refused (a flat child); none may leave an invalid mesh.
+/// them), normals along the axes and the diagonals: after every cut the mesh is valid
+/// (crack lips apart allowed). Degenerate on purpose: planes hold grid vertices, edges and
+/// faces, and cross earlier cracks along them. A cut may be refused (a flat child); none
+/// may leave an invalid mesh. With the default options and the scalpel's.
 #[test]
 fn random_partial_cuts_through_grid_vertices_keep_the_grid_valid() {
+    grid_stress(CutOptions::DEFAULT);
+}
+
+#[test]
+fn random_partial_scalpel_cuts_through_grid_vertices_keep_the_grid_valid() {
+    grid_stress(CutOptions::SCALPEL);
+}
+
+fn grid_stress(options: CutOptions) {
     const RUNS: u64 = 200;
     let n = 6;
     let grid = kuhn_grid(n);
@@ -308,7 +317,7 @@ fn random_partial_cuts_through_grid_vertices_keep_the_grid_valid() {
     let (mut cuts, mut refused) = (0, 0);
     for seed in 0..RUNS {
         let mut rng = Rng(seed * 7919 + 13);
-        let mut cutter = Cutter::new(grid.clone(), CutOptions::DEFAULT).expect("options");
+        let mut cutter = Cutter::new(grid.clone(), options).expect("options");
         for k in 0..10 {
             let normal = normals[rng.below(normals.len())];
             let mut at = || rng.below(n + 1) as f64;
@@ -339,6 +348,79 @@ fn random_partial_cuts_through_grid_vertices_keep_the_grid_valid() {
         cuts > 8 * RUNS as usize,
         "{cuts} cuts made, {refused} refused"
     );
+}
+
+/// A crack tip copied by a later cut: scalpel cuts through a Kuhn grid. The seventh (z = 5)
+/// ends at x = 3.49, leaving crack tips there; the eighth, in the same plane, overlaps it
+/// up to x = 3.59, passes through a tip and copies it (one copy per lip); the ninth
+/// (x = 3.5) crosses both lips next to it. The tip itself counted as on the ninth cut (a
+/// tip near a polygon continuing cracks is), its copies did not, so one lip's edge from
+/// the tip was cut and the coincident edge of the other lip not: 30 hanging vertices. A
+/// tip's copies are tips too.
+#[test]
+fn copies_of_a_crack_tip_are_decided_as_the_tip() {
+    let mut cutter = Cutter::new(kuhn_grid(6), CutOptions::SCALPEL).expect("options");
+    let polygons = [
+        [
+            [8.164630548672276, 1.9271104188259436, 3.908259032501781],
+            [6.458261655851171, 8.295365823289359, -0.7536274791405309],
+            [3.1199294977844723, 9.189869229110178, 1.6902012731053493],
+            [4.826298390605578, 2.8216138246467626, 6.352087784747661],
+        ],
+        [
+            [7.008491023962877, 0.9267248559089838, -0.9352158798718602],
+            [6.409220326241449, 3.163233547292604, -2.5724538735340525],
+            [-1.2976905583098526, 5.2282940949467545, 3.0693964633630975],
+            [-0.6984198605884244, 2.991785403563134, 4.70663445702529],
+        ],
+        [
+            [3.0, -5.754257153545846, -3.724390665170687],
+            [3.0, 1.637646372824503, -3.724390665170687],
+            [3.0, 1.637646372824503, 8.010295005307038],
+            [3.0, -5.754257153545846, 8.010295005307038],
+        ],
+        [
+            [0.9689257070358004, 1.0310742929641994, 0.44392276884171483],
+            [-0.709071225948436, 2.7090712259484366, -1.92912325140505],
+            [-3.8590951643607037, 5.8590951643607045, 2.52568332409749],
+            [-2.181098231376467, 4.181098231376467, 4.898729344344255],
+        ],
+        [
+            [2.0, -6.337176037098462, -5.032343014494232],
+            [2.0, 8.18888004934145, -5.032343014494232],
+            [2.0, 8.18888004934145, 6.696281605793835],
+            [2.0, -6.337176037098462, 6.696281605793835],
+        ],
+        [
+            [6.706786126425627, 1.5, 8.16396428055241],
+            [6.706786126425627, 1.5, 0.1520075956967304],
+            [4.107556040464983, 1.5, 0.1520075956967304],
+            [4.107556040464983, 1.5, 8.16396428055241],
+        ],
+        [
+            [8.91479155665441, -0.6982191110930893, 5.0],
+            [8.91479155665441, 8.76087636272857, 5.0],
+            [3.489697653331932, 8.76087636272857, 5.0],
+            [3.489697653331932, -0.6982191110930893, 5.0],
+        ],
+        [
+            [3.59051232339175, 1.9973157165015136, 5.0],
+            [3.59051232339175, 5.620736170932454, 5.0],
+            [-3.0099630755236593, 5.620736170932454, 5.0],
+            [-3.0099630755236593, 1.9973157165015136, 5.0],
+        ],
+        [
+            [3.5, -0.19866605456413122, -0.24955470235840593],
+            [3.5, 9.681372063392574, -0.24955470235840593],
+            [3.5, 9.681372063392574, 5.881926437215019],
+            [3.5, -0.19866605456413122, 5.881926437215019],
+        ],
+    ];
+    for (k, corners) in polygons.iter().enumerate() {
+        let polygon = CutPolygon::new(&corners.map(DVec3::from_array)).expect("polygon");
+        cutter.cut(&polygon).expect("cut");
+        assert_valid(cutter.mesh(), &format!("after cut {k}"));
+    }
 }
 
 /// Every phase forced onto all cores (threshold 0) and kept on one (`usize::MAX`): the

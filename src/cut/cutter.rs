@@ -960,6 +960,13 @@ impl Cutter {
                 crack.push(true);
             }
             self.mesh.point_data.push_copy(v.idx());
+            // A tip this cut passes through is copied once per side; the copies, at the
+            // tip's position, are decided as the tip is by later cuts (on the cut near a
+            // polygon continuing the crack), or one lip's edges from it are cut and the
+            // coincident edges of the other lip not.
+            if let Some(tips) = self.tips.as_mut().filter(|t| t.contains(v)) {
+                tips.insert(copy);
+            }
             origins.push(VertexOrigin::Copy { of: v });
             if keep_valences {
                 self.valence.push([members.len() as u32, 0]);
