@@ -167,9 +167,10 @@ impl StateCache {
 }
 
 /// The vertices that are crack tips: face points made by earlier cuts (paper Fig. 4c–e),
-/// where a partial cut ends, and the copies later cuts made of them. A cut that continues the crack (a scalpel's next step, whose
-/// polygon begins where the last one ended) takes the tips within reach of its polygon as
-/// on the cut, so the two cracks join there (see [`StateClassifier::with_crack_tips`]).
+/// where a partial cut ends, and the copies later cuts made of them. A cut that continues
+/// the crack (a scalpel's next step, whose polygon begins where the last one ended) takes
+/// the tips within reach of its polygon as on the cut, so the two cracks join there (see
+/// [`StateClassifier::with_crack_tips`]).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct CrackTips {
     bits: Vec<u64>,

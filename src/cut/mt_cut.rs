@@ -647,8 +647,12 @@ impl MtCutter {
     /// to stay conservative, see `fragment_bvh`), each checked by its current box. A tet
     /// is reached once: through its creator, or, created by a root, through its destroyer
     /// (whose floor holds it) or as one of the root's tets in the coarsest mesh.
-    fn tets_meeting(&self, mt: &Mt, box_meets: impl Fn(&Aabb) -> bool, test: impl FnMut(TetId)) {
-        let mut test = test;
+    fn tets_meeting(
+        &self,
+        mt: &Mt,
+        box_meets: impl Fn(&Aabb) -> bool,
+        mut test: impl FnMut(TetId),
+    ) {
         let grow = self.fragment_bvh_slack;
         let mut hits: Vec<FragmentId> = Vec::new();
         self.fragment_bvh.query(
@@ -1392,21 +1396,13 @@ impl MtCutter {
                     let mut star: Vec<(Tet, Side)> = Vec::new();
                     for t in star_tets.filter(|&t| level_bits(t) & bit != 0) {
                         match cand.binary_search(&t) {
-                            Ok(k) => {
-                                let became: Vec<(Tet, Side)> = match child_of[k] {
-                                    NONE => vec![(tets[k], unsplit_side(k))],
-                                    i => {
-                                        let ch = &children[i as usize];
-                                        (0..ch.len).map(|c| (ch.tets[c], ch.sides[c])).collect()
-                                    }
-                                };
-                                for (c, side) in became {
-                                    let c = for_side(c, side, &c, at());
-                                    if c.contains(&v) {
-                                        star.push((c, side));
-                                    }
+                            // What the cut makes of it, with the copies taken (an `OUT`
+                            // vertex has none: the tets holding it still do).
+                            Ok(k) => each_at_out(k, &mut |_, i, c, side| {
+                                if out_vertices[i] == v {
+                                    star.push((for_side(*c, side, c, at()), side));
                                 }
-                            }
+                            }),
                             Err(_) => star.push((mt.tet(t), Side::Positive)),
                         }
                     }
