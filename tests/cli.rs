@@ -236,6 +236,28 @@ fn bad_input_non_tet_cell_in_vtu() {
     rejects(&path, &["mixed.vtu", "cell 1", "type 12"]);
 }
 
+/// A demo told to write into a file refuses at once, naming it, and keeps the file.
+#[test]
+fn demo_into_a_file_is_refused_before_any_work() {
+    let dir = scratch("demo-into-file");
+    let file = dir.join("not-a-folder");
+    std::fs::write(&file, "kept").unwrap();
+    let o = mtcut(&["demo", "-o", file.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains("not-a-folder: exists and is not a folder"),
+        "{err}"
+    );
+    assert!(
+        stdout(&o).is_empty(),
+        "work done before refusing: {}",
+        stdout(&o)
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "kept");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn demo_builds_extracts_cuts_and_lists_its_outputs() {
     let dir = scratch("demo");

@@ -102,7 +102,7 @@ fn a_straight_blade_opens_the_model_step_by_step() {
 #[test]
 fn bad_path_files_are_refused_by_name() {
     let dir = scratch("cli_scalpel_bad");
-    let (model, _) = fandisk_model(&dir);
+    let (model, b) = fandisk_model(&dir);
     let out = dir.join("series");
     for (name, text, needle) in [
         ("not-json.json", "[[1,2", "not JSON"),
@@ -143,6 +143,17 @@ fn bad_path_files_are_refused_by_name() {
         &["missing.json"],
     );
     assert!(!out.exists(), "a refused path wrote outputs");
+    // An output that is a file, not a folder, is refused before the first step, and the
+    // file is kept.
+    let path = dir.join("good.json");
+    write_path(&path, &straight_blade(&b));
+    let file = dir.join("a-file");
+    std::fs::write(&file, "kept").unwrap();
+    fails(
+        &["scalpel", s(&model), "--path", s(&path), "-o", s(&file)],
+        &["a-file", "exists and is not a folder"],
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "kept");
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -16,6 +16,7 @@
 use crate::CliResult;
 use crate::build::{build_with_bar, progress_bar};
 use crate::info::MeshInfo;
+use crate::parse;
 use flate2::read::GzDecoder;
 use mtcut::cut::{Blade, Components, CutOptions, Cutter, MtCutter, Scalpel};
 use mtcut::geom::{Aabb, CutPolygon, DVec3, SWEEP_PLANARITY, scalpel_sweep};
@@ -107,6 +108,7 @@ struct Part {
 pub fn run(args: Args) -> CliResult {
     let start = Instant::now();
     let dir = &args.output;
+    parse::output_folder(dir)?;
     let (mesh, report) = liver()?;
     let info = MeshInfo::of(&mesh, report);
     out!("embedded model: liver");
@@ -198,7 +200,6 @@ pub fn run(args: Args) -> CliResult {
     let curve_parts = Components::of(curve.mesh()).count;
 
     // Everything checked: write.
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let quality = dir.join("liver-quality.json");
     std::fs::write(
         &quality,

@@ -181,6 +181,21 @@ fn in_a_directory(path: &std::path::Path) -> Result<(), String> {
     }
 }
 
+/// Checks, before any work is done, that `dir` can be the folder of a run's outputs: a
+/// folder, or nothing yet (it is then created, with its parents). A file there would make
+/// the run fail only when it writes, after all its work, with the system's "File exists".
+pub fn output_folder(dir: &std::path::Path) -> Result<(), String> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(format!(
+            "{}: exists and is not a folder (the outputs go into a folder; give a new name \
+             or an existing folder)",
+            dir.display()
+        ));
+    }
+    std::fs::create_dir_all(dir)
+        .map_err(|e| format!("{}: cannot create the folder: {e}", dir.display()))
+}
+
 /// An `.mt` model: loading validates it ([`mtcut::mt::Mt::validate`]), so commands that
 /// write from a model never start from a broken one.
 pub fn valid_model(path: &std::path::Path) -> Result<mtcut::mt::Mt, Box<dyn std::error::Error>> {

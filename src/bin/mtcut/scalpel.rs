@@ -138,7 +138,7 @@ pub fn run(args: Args) -> CliResult {
         _ => ExtractOptions::FINEST,
     };
     let mt = parse::valid_model(&args.model)?;
-    std::fs::create_dir_all(&args.output).map_err(|e| format!("{}: {e}", args.output.display()))?;
+    parse::output_folder(&args.output)?;
     if args.time_critical {
         return run_time_critical(&args, mt, &blades, &options);
     }
@@ -331,7 +331,7 @@ fn run_mesh(args: &Args) -> CliResult {
     }
     let blades = read_path(&args.path)?;
     let (mesh, _) = read_mesh(&args.model)?;
-    std::fs::create_dir_all(&args.output).map_err(|e| format!("{}: {e}", args.output.display()))?;
+    parse::output_folder(&args.output)?;
     let mut cutter = Cutter::new(mesh, CutOptions::SCALPEL)?;
     let mut series = Series::new(&args.output);
     series.write(0, cutter.mesh())?;
