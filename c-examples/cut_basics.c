@@ -152,6 +152,16 @@ int main(int argc, char **argv) {
   VERIFY(stats.tets_cut > 0 && stats.components == 1); /* a notch does not separate */
   mtcut_example_write_vtu(mesh, argv[1], "cut-notch.vtu");
 
+  /* How far the blade moves in that sweep, in the mesh's median edges: a host moving a
+     blade in steps much shorter than one defers them (mtcut_blade_advance). */
+  {
+    double edge = 0.0, advance = 0.0;
+    CHECK(mtcut_mesh_median_edge_length(mesh, &edge));
+    CHECK(mtcut_blade_advance(blade_start, blade_end, &advance));
+    VERIFY(edge > 0.0 && advance > 0.0);
+    printf("sweep: the blade moves %.2f median edges\n", advance / edge);
+  }
+
   /* A scalpel sweep with explicit options: defaults first, then what differs. */
   options.struct_size = sizeof options;
   CHECK(mtcut_cut_options_default(&options));

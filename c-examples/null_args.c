@@ -214,6 +214,8 @@ static void check_measures(const mtcut_mesh *mesh) {
 
   EXPECT(mtcut_mesh_volume(NULL, &volume), MTCUT_STATUS_NULL_ARGUMENT);
   EXPECT(mtcut_mesh_volume(mesh, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mesh_median_edge_length(NULL, &volume), MTCUT_STATUS_NULL_ARGUMENT);
+  EXPECT(mtcut_mesh_median_edge_length(mesh, NULL), MTCUT_STATUS_NULL_ARGUMENT);
   UNTOUCHED(volume == -1.0);
 
   EXPECT(mtcut_mesh_bounding_box(NULL, lo, hi), MTCUT_STATUS_NULL_ARGUMENT);
@@ -409,6 +411,15 @@ static void check_cut(mtcut_mesh *mesh) {
   EXPECT(mtcut_mesh_scalpel_sweep(mesh, start, NULL, NULL, NULL), MTCUT_STATUS_NULL_ARGUMENT);
   /* A blade that does not move sweeps nothing. */
   EXPECT(mtcut_mesh_scalpel_sweep(mesh, start, end_same, &o, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+  {
+    double advance = -1.0;
+    const double nan_end[6] = {NAN, 0.5, 0.5, 2, 0.5, 0.5};
+    EXPECT(mtcut_blade_advance(NULL, end_same, &advance), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_blade_advance(start, NULL, &advance), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_blade_advance(start, end_same, NULL), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_blade_advance(start, nan_end, &advance), MTCUT_STATUS_INVALID_ARGUMENT);
+    UNTOUCHED(advance == -1.0);
+  }
   o.scheme = 7;
   EXPECT(mtcut_mesh_scalpel_sweep(mesh, start, end_same, &o, &st), MTCUT_STATUS_INVALID_ARGUMENT);
   UNTOUCHED(st.tets_cut == 0);

@@ -928,6 +928,18 @@ mtcut_status mtcut_mesh_volume(const struct mtcut_mesh *mesh,
                                double *volume);
 
 /**
+ * The median length of the tets' edges (each counted once per tet holding it) into
+ * `*length`: a typical edge, the unit in which to defer a scalpel's short steps (see
+ * `mtcut_blade_advance`). A mesh without tets gives `MTCUT_STATUS_INVALID_ARGUMENT`,
+ * nothing written.
+ *
+ * # Safety
+ * `mesh` must be a live mesh handle; `length` writable.
+ */
+mtcut_status mtcut_mesh_median_edge_length(const struct mtcut_mesh *mesh,
+                                           double *length);
+
+/**
  * The axis-aligned bounding box of all vertices: `min_xyz` and `max_xyz` receive three
  * doubles each.
  *
@@ -1138,7 +1150,9 @@ mtcut_status mtcut_mesh_cut_with_options(struct mtcut_mesh *mesh,
  * `MTCUT_STATUS_INVALID_ARGUMENT` with the mesh unchanged. Called once per time step on
  * the same handle, each step continues the crack the earlier ones made (the handle keeps
  * its crack tips): with NULL options those of `mtcut_cut_options_scalpel`, which a blade
- * moving straight, turning or tilting needs; start from them to change options.
+ * moving straight, turning or tilting needs; start from them to change options. Steps
+ * much shorter than the mesh's edges fill the crack's front with slivers: see
+ * `mtcut_blade_advance` for deferring them.
  * Statistics as in `mtcut_mesh_cut_with_options`; for two triangles the counts and times
  * add up. (The one
  * failure found after the first triangle was applied: the second would make the mesh
@@ -1154,6 +1168,26 @@ mtcut_status mtcut_mesh_scalpel_sweep(struct mtcut_mesh *mesh,
                                       const double *end_xyz,
                                       const struct mtcut_cut_options *options_or_null,
                                       struct mtcut_cut_stats *stats_or_null);
+
+/**
+ * How far a blade has moved across its own line: the larger distance of `to_xyz`'s two
+ * ends (`to_xyz[0..3]`, `to_xyz[3..6]`) from the line through `from_xyz`'s, into
+ * `*advance` (a blade sliding along its edge has not moved; one turning about its middle
+ * has moved as far as its ends). A blade moved in steps much shorter than the mesh's
+ * edges splits the tets at its crack's front again at every step, filling it with
+ * slivers; a host defers a step while the advance from where its crack ends (the end of
+ * the last sweep it cut) is below about half `mtcut_mesh_median_edge_length`, then cuts
+ * the sweep from there, and at the end of its path cuts what is left (as
+ * `mtcut::cut::Incision` and `mtcut scalpel --min-advance` do; see the README, "A scalpel
+ * on a plain mesh"). A coordinate that is not finite or larger in magnitude than 1e50
+ * gives `MTCUT_STATUS_INVALID_ARGUMENT`, nothing written.
+ *
+ * # Safety
+ * `from_xyz` and `to_xyz` readable for 6 doubles each; `advance` writable.
+ */
+mtcut_status mtcut_blade_advance(const double *from_xyz,
+                                 const double *to_xyz,
+                                 double *advance);
 
 /**
  * The planar convex polygons a straight blade sweeps in one time step, in the order to

@@ -392,3 +392,74 @@ fn a_pause_cuts_nothing_and_a_missed_budget_is_reported() {
     );
     assert!(!out.exists(), "the refused run wrote its series");
 }
+
+/// `--min-advance F` defers steps until the blade is F median edges from where its crack
+/// ends, and the last step cuts what is left: a straight blade crossing pinion-coarse in
+/// 40 short steps, as a mesh, as a model and time-critical, leaves two parts with most
+/// steps deferred (each reported), and the step that caught up cut. A negative or NaN F
+/// is refused before any work.
+#[test]
+fn min_advance_defers_short_steps_and_the_last_step_catches_up() {
+    let dir = scratch("cli_scalpel_min_advance");
+    let mesh = data("pinion-coarse.node");
+    let model = dir.join("pinion.mt");
+    ok(&["build", s(&mesh), "-o", s(&model)]);
+    let b = mtcut::io::read_mesh(&mesh).unwrap().0.bbox();
+    let (c, d) = (b.center(), b.max - b.min);
+    let blades: Vec<[[f64; 3]; 2]> = (0..=40)
+        .map(|k| {
+            let x = b.min.x - 0.02 * d.x + 1.04 * d.x * k as f64 / 40.0;
+            [
+                [x, c.y + 0.013 * d.y, b.min.z - 0.1 * d.z],
+                [x, c.y - 0.011 * d.y, b.max.z + 0.1 * d.z],
+            ]
+        })
+        .collect();
+    let path = dir.join("path.json");
+    write_path(&path, &blades);
+    for (input, extra) in [
+        (&mesh, &[][..]),
+        (&model, &[][..]),
+        (&model, &["--time-critical"][..]),
+    ] {
+        let out = dir.join("series");
+        let mut a = vec!["scalpel", s(input), "--path", s(&path), "-o", s(&out)];
+        a.extend_from_slice(&["--min-advance", "1.5", "--json"]);
+        a.extend_from_slice(extra);
+        let j = json(&a);
+        let steps = j["steps"].as_array().expect("steps");
+        let deferred = steps.iter().filter(|s| s["deferred"] == true).count();
+        assert!(
+            deferred >= 20,
+            "{input:?} {extra:?}: {deferred} deferred: {j}"
+        );
+        for s in steps.iter().filter(|s| s["deferred"] == true) {
+            assert_eq!(s["polygons"], 0, "{s}");
+        }
+        assert_eq!(steps[39]["deferred"], false, "{j}");
+        assert!(
+            steps[39]["polygons"].as_u64() > Some(0),
+            "the last step caught up: {j}"
+        );
+        assert_eq!(j["components"], 2, "{input:?} {extra:?}: {j}");
+        std::fs::remove_dir_all(&out).ok();
+    }
+    for bad in ["-1", "NaN", "inf"] {
+        let out = dir.join("refused");
+        fails(
+            &[
+                "scalpel",
+                s(&mesh),
+                "--path",
+                s(&path),
+                "-o",
+                s(&out),
+                "--min-advance",
+                bad,
+            ],
+            &["--min-advance"],
+        );
+        assert!(!out.exists(), "a refused run wrote its folder");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -15,8 +15,11 @@ mod cut_common;
 
 use blades::{shallow_path, tilting, vertical};
 use cut_common::{MESHES, mesh};
-use mtcut::cut::{Blade, Components, CutOptions, Cutter, MIN_FACE_POINT_MARGIN};
-use mtcut::geom::{Aabb, DVec3, Tolerance, scalpel_sweep};
+use mtcut::cut::{
+    Blade, Components, CutOptions, Cutter, Incision, MIN_FACE_POINT_MARGIN, ScalpelError,
+    blade_advance,
+};
+use mtcut::geom::{Aabb, CutPolygon, DVec3, Tolerance, scalpel_sweep};
 
 struct Run {
     name: &'static str,
@@ -53,22 +56,21 @@ impl Run {
                     .unwrap_or_else(|e| panic!("{} {what}: cut refused: {e}", self.name));
             }
             self.steps += 1;
-            let report = self.cutter.mesh().validate();
-            assert!(
-                report.is_valid(),
-                "{} {what}, step {}: {report}",
-                self.name,
-                self.steps
-            );
-            let v = self.cutter.mesh().volume();
-            assert!(
-                (v - self.volume).abs() <= 1e-12 * self.volume,
-                "{} {what}, step {}: volume {v}, was {}",
-                self.name,
-                self.steps,
-                self.volume
-            );
+            self.check(&format!("{what}, step {}", self.steps));
         }
+    }
+
+    /// The mesh is valid and keeps its volume.
+    fn check(&self, what: &str) {
+        let report = self.cutter.mesh().validate();
+        assert!(report.is_valid(), "{} {what}: {report}", self.name);
+        let v = self.cutter.mesh().volume();
+        assert!(
+            (v - self.volume).abs() <= 1e-12 * self.volume,
+            "{} {what}: volume {v}, was {}",
+            self.name,
+            self.volume
+        );
     }
 
     /// The parts, found through faces and (as the cutter counts them) through vertices
@@ -108,6 +110,69 @@ fn a_straight_blade_crossing_in_steps_of_any_length_leaves_two_parts() {
             assert_eq!(run.parts(), 2, "{name}, {steps} steps");
         }
     }
+}
+
+/// A blade crossing fandisk in 300 steps, each a tenth of its median edge: cut at every
+/// step, the tets at the crack's front are split again and again (measured: 190,257 tets
+/// added, smallest dihedral angle 5e-4°). An [`Incision`] deferring steps until the blade
+/// is half an edge from where the crack ends cuts far fewer times, each step leaving a
+/// valid mesh, deferred ones leaving it as it was, and catching up at the end leaves two
+/// parts.
+#[test]
+fn a_blade_in_steps_shorter_than_the_edges_cuts_once_it_has_moved_half_an_edge() {
+    let name = "fandisk";
+    let edge = mesh(name).median_edge_length().expect("tets");
+    let mut every_step = Run::new(name, CutOptions::SCALPEL);
+    let path = straight_path(&every_step.bounds(), 300);
+    assert!(
+        blade_advance(path[0], path[1]) < 0.12 * edge,
+        "steps shorter than the edges"
+    );
+    for w in path.windows(2) {
+        for polygon in &scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).unwrap() {
+            every_step.cutter.cut(polygon).expect("cut");
+        }
+    }
+    let mut run = Run::new(name, CutOptions::SCALPEL);
+    let mut incision = Incision::new(path[0], 0.5 * edge).unwrap();
+    let mut cuts = 0;
+    for (k, &to) in path.iter().enumerate().skip(1) {
+        let tets = run.cutter.mesh().nb_tets();
+        let cutter = &mut run.cutter;
+        let mut cut = |p: &CutPolygon| -> Result<(), ScalpelError> {
+            cutter.cut(p)?;
+            Ok(())
+        };
+        let cut_now = incision
+            .step(to, &mut cut)
+            .unwrap_or_else(|e| panic!("step {k}: {e}"));
+        if !cut_now {
+            assert!(incision.is_behind(), "step {k}");
+            assert_eq!(run.cutter.mesh().nb_tets(), tets, "a deferred step {k} cut");
+            continue;
+        }
+        cuts += 1;
+        run.check(&format!("step {k}"));
+    }
+    let cutter = &mut run.cutter;
+    incision
+        .catch_up(|p| -> Result<(), ScalpelError> {
+            cutter.cut(p)?;
+            Ok(())
+        })
+        .expect("catch up");
+    run.check("caught up");
+    assert_eq!(run.parts(), 2);
+    let input = mesh(name).nb_tets();
+    let (deferred, every) = (
+        run.cutter.mesh().nb_tets() - input,
+        every_step.cutter.mesh().nb_tets() - input,
+    );
+    println!("fandisk, 300 steps: {cuts} cuts adding {deferred} tets; cut at every step: {every}");
+    assert!(
+        cuts <= 75 && 4 * deferred <= every,
+        "{cuts} cuts, {deferred} tets added (cut at every step: {every})"
+    );
 }
 
 /// A vertical blade moving along an arc around a centre off the body's corner, turning by

@@ -171,6 +171,11 @@ fn measures_of_the_cube() {
     let s = unsafe { mtcut_mesh_component_count(m.0, &mut components) };
     expect(s, MTCUT_STATUS_OK, "", "");
     assert_eq!(components, 1);
+    // 36 tet edges: 18 of length 1, 12 of √2, 6 of √3; the 19th shortest is √2.
+    let mut edge = 0.0;
+    let s = unsafe { mtcut_mesh_median_edge_length(m.0, &mut edge) };
+    expect(s, MTCUT_STATUS_OK, "", "");
+    assert_eq!(edge, 2f64.sqrt());
 
     let mut q: mtcut_quality = unsafe { std::mem::zeroed() };
     q.struct_size = size_of::<mtcut_quality>();
@@ -1017,4 +1022,36 @@ fn vtk_written_vtu_reads_with_its_arrays() {
     }
     let material = column(&m, MTCUT_LOCATION_TET, c"material");
     assert!(material.iter().all(|&v| v == 1.0 || v == 2.0));
+}
+
+/// A blade's advance across its own line: a translation, a slide along the blade (no
+/// advance), a turn about its middle; a NaN end is refused, nothing written.
+#[test]
+fn blade_advance_is_measured_across_the_blade() {
+    let from = [0.0, 0.0, -1.0, 0.0, 0.0, 1.0];
+    let advance = |to: [f64; 6]| {
+        let mut a = -1.0;
+        let s = unsafe { mtcut_blade_advance(from.as_ptr(), to.as_ptr(), &mut a) };
+        (s, a)
+    };
+    assert_eq!(
+        advance([0.25, 0.0, -1.0, 0.25, 0.0, 1.0]),
+        (MTCUT_STATUS_OK, 0.25)
+    );
+    assert_eq!(
+        advance([0.0, 0.0, 2.0, 0.0, 0.0, 4.0]),
+        (MTCUT_STATUS_OK, 0.0)
+    );
+    assert_eq!(
+        advance([-0.5, 0.0, -1.0, 0.5, 0.0, 1.0]),
+        (MTCUT_STATUS_OK, 0.5)
+    );
+    let (s, a) = advance([f64::NAN, 0.0, -1.0, 0.0, 0.0, 1.0]);
+    expect(
+        s,
+        MTCUT_STATUS_INVALID_ARGUMENT,
+        "mtcut_blade_advance",
+        "to_xyz",
+    );
+    assert_eq!(a, -1.0);
 }

@@ -14,7 +14,7 @@ mod mt_common;
 mod mtcut_common;
 
 use blades::{on_arc, shallow_path, tilting, tilting_in};
-use mtcut::cut::{Blade, Components, CutError, CutOptions, Cutter, MtCutter};
+use mtcut::cut::{Blade, Components, CutError, CutOptions, Cutter, MtCutter, Scalpel};
 use mtcut::geom::{Aabb, CutPolygon, DVec3, Tolerance, scalpel_sweep};
 use mtcut_common::*;
 
@@ -354,4 +354,70 @@ fn a_blade_in_an_axis_aligned_plane_across_fandisk() {
         .collect();
     run.sweep("axis-aligned", &path);
     assert!(run.components() >= 2, "fandisk: the blade did not separate");
+}
+
+/// A blade crossing the fandisk MT in 60 steps of about half a median edge, through
+/// [`Scalpel`] deferring steps until the blade is 1.2 edges from where its crack ends: a
+/// deferred step leaves the MT as it was, each cutting step leaves it valid (every level,
+/// as above), and catching up after the last step separates the body.
+#[test]
+fn a_scalpel_deferring_short_steps_cuts_every_few_steps_and_separates_the_body() {
+    let run = Run::new("fandisk");
+    let b = run.bounds();
+    let finest = run
+        .cutter
+        .mt()
+        .extract(&mtcut::mt::ExtractOptions::FINEST)
+        .expect("finest");
+    let edge = finest.mesh.median_edge_length().expect("tets");
+    let (c, d) = (b.center(), b.max - b.min);
+    let path: Vec<Blade> = (0..=60)
+        .map(|k| {
+            let x = b.min.x - 0.02 * d.x + 1.04 * d.x * k as f64 / 60.0;
+            [
+                DVec3::new(x, c.y + 0.013 * d.y, b.min.z - 0.1 * d.z),
+                DVec3::new(x, c.y - 0.011 * d.y, b.max.z + 0.1 * d.z),
+            ]
+        })
+        .collect();
+    let mt = run.cutter.mt().clone();
+    let mut scalpel = Scalpel::new(mt, path[0]).expect("scalpel");
+    scalpel.set_min_advance(1.2 * edge).expect("a length");
+    assert!(scalpel.set_min_advance(f64::NAN).is_err());
+    assert_eq!(scalpel.incision().min_advance(), 1.2 * edge);
+    let mut polygons: Vec<CutPolygon> = Vec::new();
+    let (mut cuts, mut deferred) = (0, 0);
+    for (k, &to) in path.iter().enumerate().skip(1) {
+        let tets = scalpel.mt().nb_tets();
+        let from = scalpel.incision().end();
+        let step = scalpel.step(to).unwrap_or_else(|e| panic!("step {k}: {e}"));
+        if step.deferred {
+            deferred += 1;
+            assert!(step.cuts.is_empty(), "step {k}");
+            assert_eq!(
+                scalpel.mt().nb_tets(),
+                tets,
+                "deferred step {k} changed the MT"
+            );
+            continue;
+        }
+        cuts += 1;
+        polygons.extend(scalpel_sweep(from, to, Tolerance { relative: 1e-9 }).unwrap());
+        let req = requests(scalpel.mt(), 10, 0, &mut Rng(k as u64));
+        check_after_cut(scalpel.cutter(), run.volumes, &polygons, &req)
+            .unwrap_or_else(|m| panic!("step {k}: {m}"));
+    }
+    let from = scalpel.incision().end();
+    let rest = scalpel.catch_up().expect("catch up");
+    if !rest.cuts.is_empty() {
+        polygons.extend(scalpel_sweep(from, path[60], Tolerance { relative: 1e-9 }).unwrap());
+    }
+    let req = requests(scalpel.mt(), 10, 1, &mut Rng(61));
+    check_after_cut(scalpel.cutter(), run.volumes, &polygons, &req).expect("caught up");
+    println!("fandisk MT, 60 steps: {cuts} cut, {deferred} deferred");
+    assert!(
+        deferred >= 30 && cuts <= 30,
+        "{cuts} steps cut, {deferred} deferred"
+    );
+    assert_eq!(scalpel.mt().nb_components(), 2);
 }

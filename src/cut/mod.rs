@@ -107,7 +107,7 @@ pub use mt_cut::{MtCutStats, MtCutTimes, MtCutter};
 pub use options::{CutError, CutOptions, MIN_FACE_POINT_MARGIN, MIN_SNAP, Scheme};
 pub use report::{CutResult, CutStats, CutTimes, SplitRecord};
 pub use roi::{RoiError, RoiRegion, RoiStats, region_of_interest};
-pub use scalpel::{Blade, Scalpel, ScalpelError, ScalpelStep};
+pub use scalpel::{Blade, Incision, Scalpel, ScalpelError, ScalpelStep, blade_advance};
 pub use tables::{CutCase, Side};
 
 #[cfg(doc)]

@@ -28,10 +28,24 @@
 //!   liver, some steps would break a fragment where the levels disagree on the last
 //!   crack's end. The MT cut checks each fragment it changed and refuses such a step
 //!   ([`CutError::MtInconsistent`]), the MT left as it was; the CLI stops there.
+//!
+//! # Steps smaller than the tets
+//!
+//! Each cut that extends a crack splits again the tets at its front, which the last cut
+//! left partially cut. A blade moved in steps much shorter than the mesh's edges (a
+//! simulation's frame rate) does so at every step, and the front fills with ever thinner
+//! tets. Measured with the plain-mesh engine and [`CutOptions::SCALPEL`], a straight blade
+//! crossing three quarters of fandisk (its median edge 4.4 % of that distance): in 30 steps
+//! the mesh gains 9,252 tets, in 300 steps 190,257, its smallest dihedral angle going from
+//! 6e-3° to 5e-4°. An [`Incision`] with a `min_advance` defers a step until the blade is
+//! that far from where the crack ends, then cuts everything swept since in one polygon:
+//! with half the median edge, the 300 steps make 43 cuts and 11,989 tets (with one edge,
+//! 22 cuts and 7,584 tets). The price is a crack lagging the blade by less than
+//! `min_advance`; [`Incision::catch_up`] cuts what is left at the end of a path.
 
 use super::mt_cut::{MtCutStats, MtCutter};
 use super::options::{CutError, CutOptions};
-use crate::geom::{DVec3, PolygonError, SWEEP_PLANARITY, scalpel_sweep};
+use crate::geom::{CutPolygon, DVec3, PolygonError, SWEEP_PLANARITY, scalpel_sweep};
 use crate::mt::Mt;
 
 /// A blade position: the segment between two points (the cutting edge).
@@ -44,12 +58,134 @@ pub enum ScalpelError {
     Sweep(#[from] PolygonError),
     #[error(transparent)]
     Cut(#[from] CutError),
+    #[error("min_advance is {0}: expected a finite length >= 0 (0 cuts every step)")]
+    MinAdvance(f64),
 }
 
-/// What one step did: the polygons cut (one or two) and their statistics.
+/// How far a blade at `to` has moved from `from` across its own line: the larger distance
+/// of `to`'s two ends from the line through `from` (a blade sliding along its edge sweeps
+/// nothing; one turning about its middle has moved as far as its ends).
+pub fn blade_advance(from: Blade, to: Blade) -> f64 {
+    let axis = from[1] - from[0];
+    let off_line = |p: DVec3| {
+        let d = p - from[0];
+        let len2 = axis.length_squared();
+        if len2 > 0.0 {
+            (d - axis * (d.dot(axis) / len2)).length()
+        } else {
+            d.length()
+        }
+    };
+    off_line(to[0]).max(off_line(to[1]))
+}
+
+/// A blade moving through a body in steps, and where its crack ends (see the [module
+/// docs](self#steps-smaller-than-the-tets)): a step is cut from where the crack ends to
+/// the blade's new position, or deferred while the blade is less than `min_advance` from
+/// that end ([`blade_advance`]). With `min_advance` 0 every step that moves the blade is
+/// cut, which is what [`Scalpel`] does by default.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Incision {
+    blade: Blade,
+    end: Blade,
+    min_advance: f64,
+}
+
+impl Incision {
+    /// An incision about to start, its blade at `blade`.
+    pub fn new(blade: Blade, min_advance: f64) -> Result<Incision, ScalpelError> {
+        crate::geom::check_points(&blade)?;
+        let mut incision = Incision {
+            blade,
+            end: blade,
+            min_advance: 0.0,
+        };
+        incision.set_min_advance(min_advance)?;
+        Ok(incision)
+    }
+
+    /// Defers, from now on, the steps that leave the blade less than `min_advance` from
+    /// where the crack ends (a finite length ≥ 0; otherwise refused, nothing changed).
+    pub fn set_min_advance(&mut self, min_advance: f64) -> Result<(), ScalpelError> {
+        if !(min_advance.is_finite() && min_advance >= 0.0) {
+            return Err(ScalpelError::MinAdvance(min_advance));
+        }
+        self.min_advance = min_advance;
+        Ok(())
+    }
+
+    /// Where the blade is.
+    pub fn blade(&self) -> Blade {
+        self.blade
+    }
+
+    /// Where the crack ends: the blade's position at the last step that cut.
+    pub fn end(&self) -> Blade {
+        self.end
+    }
+
+    pub fn min_advance(&self) -> f64 {
+        self.min_advance
+    }
+
+    /// Whether steps were deferred: the blade is not where the crack ends.
+    pub fn is_behind(&self) -> bool {
+        self.blade != self.end
+    }
+
+    /// Moves the blade to `to`, passing `cut` the polygons to cut: the area swept from
+    /// where the crack ends (one quadrilateral, or two triangles when not planar), or none
+    /// when the step is deferred or the blade ends where the crack does. Returns whether
+    /// it cut. On an error (of the sweep, or the first returned by `cut`) the incision is
+    /// as it was.
+    pub fn step<E: From<PolygonError>>(
+        &mut self,
+        to: Blade,
+        cut: impl FnMut(&CutPolygon) -> Result<(), E>,
+    ) -> Result<bool, E> {
+        crate::geom::check_points(&to)?;
+        if blade_advance(self.end, to) < self.min_advance {
+            self.blade = to;
+            return Ok(false);
+        }
+        self.cut_to(to, cut)
+    }
+
+    /// Cuts what deferred steps left (nothing when none were): the crack then ends at the
+    /// blade. Returns whether it cut.
+    pub fn catch_up<E: From<PolygonError>>(
+        &mut self,
+        cut: impl FnMut(&CutPolygon) -> Result<(), E>,
+    ) -> Result<bool, E> {
+        self.cut_to(self.blade, cut)
+    }
+
+    fn cut_to<E: From<PolygonError>>(
+        &mut self,
+        to: Blade,
+        mut cut: impl FnMut(&CutPolygon) -> Result<(), E>,
+    ) -> Result<bool, E> {
+        if to == self.end {
+            self.blade = to;
+            return Ok(false);
+        }
+        for polygon in &scalpel_sweep(self.end, to, SWEEP_PLANARITY)? {
+            cut(polygon)?;
+        }
+        self.blade = to;
+        self.end = to;
+        Ok(true)
+    }
+}
+
+/// What one step did: the polygons cut (one or two; none for a deferred step) and their
+/// statistics.
 #[derive(Clone, Debug, Default)]
 pub struct ScalpelStep {
     pub cuts: Vec<MtCutStats>,
+    /// The blade moved less than the scalpel's `min_advance` from where the crack ends:
+    /// nothing was cut, and a later step (or [`Scalpel::catch_up`]) cuts the area.
+    pub deferred: bool,
 }
 
 impl ScalpelStep {
@@ -68,7 +204,7 @@ impl ScalpelStep {
 /// An MT and a blade moving through it (see the [module docs](self)).
 pub struct Scalpel {
     cutter: MtCutter,
-    blade: Blade,
+    incision: Incision,
 }
 
 impl Scalpel {
@@ -76,40 +212,188 @@ impl Scalpel {
     /// docs); the same as [`CutOptions::SCALPEL`] for a plain mesh.
     pub const OPTIONS: CutOptions = MtCutter::DEFAULT_OPTIONS;
 
-    /// A scalpel on `mt` (which should be valid), its blade at `blade`.
+    /// A scalpel on `mt` (which should be valid), its blade at `blade`, cutting every step
+    /// (a `min_advance` of 0: see [`Scalpel::set_min_advance`]).
     pub fn new(mt: Mt, blade: Blade) -> Result<Scalpel, ScalpelError> {
-        crate::geom::check_points(&blade)?;
         Ok(Scalpel {
+            incision: Incision::new(blade, 0.0)?,
             cutter: MtCutter::new(mt, Scalpel::OPTIONS)?,
-            blade,
         })
     }
 
-    /// Moves the blade to `to`, cutting the area it sweeps. A blade that did not move cuts
+    /// Defers the steps that leave the blade less than `min_advance` (a length) from where
+    /// its crack ends ([`Incision`]; half the median edge of the finest mesh,
+    /// [`crate::mesh::TetMesh::median_edge_length`], keeps a blade moved in tiny steps from
+    /// filling the crack's front with slivers). A value that is not a finite length ≥ 0 is
+    /// refused, the scalpel unchanged.
+    pub fn set_min_advance(&mut self, min_advance: f64) -> Result<(), ScalpelError> {
+        self.incision.set_min_advance(min_advance)
+    }
+
+    /// Moves the blade to `to`, cutting the area swept since the crack's end, or deferring
+    /// the step (see [`Scalpel::set_min_advance`]). A blade that did not move cuts
     /// nothing. On error the blade stays where it was and so does the MT, except after a
     /// non-planar sweep whose second triangle failed (the first was cut).
     pub fn step(&mut self, to: Blade) -> Result<ScalpelStep, ScalpelError> {
-        if to == self.blade {
-            return Ok(ScalpelStep::default());
+        if to == self.incision.blade() {
+            return Ok(ScalpelStep {
+                cuts: Vec::new(),
+                deferred: self.incision.is_behind(),
+            });
         }
-        let polygons = scalpel_sweep(self.blade, to, SWEEP_PLANARITY)?;
         let mut step = ScalpelStep::default();
-        for p in &polygons {
-            step.cuts.push(self.cutter.cut(p)?);
-        }
-        self.blade = to;
+        let cutter = &mut self.cutter;
+        let cut = self.incision.step(to, |p| -> Result<(), ScalpelError> {
+            step.cuts.push(cutter.cut(p)?);
+            Ok(())
+        })?;
+        step.deferred = !cut && self.incision.is_behind();
+        Ok(step)
+    }
+
+    /// Cuts the area deferred steps left, so the crack ends at the blade (at the end of a
+    /// path); nothing when none was deferred.
+    pub fn catch_up(&mut self) -> Result<ScalpelStep, ScalpelError> {
+        let mut step = ScalpelStep::default();
+        let cutter = &mut self.cutter;
+        self.incision.catch_up(|p| -> Result<(), ScalpelError> {
+            step.cuts.push(cutter.cut(p)?);
+            Ok(())
+        })?;
         Ok(step)
     }
 
     pub fn blade(&self) -> Blade {
-        self.blade
+        self.incision.blade()
+    }
+
+    /// The blade and where its crack ends.
+    pub fn incision(&self) -> &Incision {
+        &self.incision
     }
 
     pub fn mt(&self) -> &Mt {
         self.cutter.mt()
     }
 
+    /// The MT's cutter (its options, vertex scales and last cut's new vertices).
+    pub fn cutter(&self) -> &MtCutter {
+        &self.cutter
+    }
+
+    /// The MT (deferred steps not cut: see [`Scalpel::catch_up`]).
     pub fn into_mt(self) -> Mt {
         self.cutter.into_mt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn blade(x: f64) -> Blade {
+        [DVec3::new(x, 0.0, -1.0), DVec3::new(x, 0.0, 1.0)]
+    }
+
+    /// The polygons an incision passes to its cut, as their corner lists.
+    fn stepped(
+        incision: &mut Incision,
+        to: Blade,
+        catch_up: bool,
+    ) -> Result<Vec<Vec<DVec3>>, PolygonError> {
+        let mut cut = Vec::new();
+        let mut take = |p: &CutPolygon| -> Result<(), PolygonError> {
+            cut.push(p.points().to_vec());
+            Ok(())
+        };
+        if catch_up {
+            incision.catch_up(&mut take)?;
+        } else {
+            incision.step(to, &mut take)?;
+        }
+        Ok(cut)
+    }
+
+    #[test]
+    fn advance_is_measured_across_the_blade() {
+        let from = blade(0.0);
+        assert_eq!(blade_advance(from, blade(0.25)), 0.25);
+        // Sliding along its own line sweeps nothing.
+        let slid = from.map(|p| p + DVec3::new(0.0, 0.0, 3.0));
+        assert_eq!(blade_advance(from, slid), 0.0);
+        // Turning about its middle: as far as its ends moved.
+        let turned = [DVec3::new(-0.5, 0.0, -1.0), DVec3::new(0.5, 0.0, 1.0)];
+        assert_eq!(blade_advance(from, turned), 0.5);
+    }
+
+    #[test]
+    fn short_steps_are_deferred_and_cut_together_from_where_the_crack_ends() {
+        let mut incision = Incision::new(blade(0.0), 0.3).unwrap();
+        assert!(
+            stepped(&mut incision, blade(0.1), false)
+                .unwrap()
+                .is_empty()
+        );
+        assert!(
+            stepped(&mut incision, blade(0.2), false)
+                .unwrap()
+                .is_empty()
+        );
+        assert!(incision.is_behind());
+        assert_eq!(incision.end(), blade(0.0));
+        // 0.35 from the crack's end: one quadrilateral from it.
+        let cut = stepped(&mut incision, blade(0.35), false).unwrap();
+        assert_eq!(cut.len(), 1);
+        let xs: Vec<f64> = cut[0].iter().map(|p| p.x).collect();
+        assert!(xs.contains(&0.0) && xs.contains(&0.35), "{xs:?}");
+        assert!(!incision.is_behind());
+        // Left behind at the end of a path: caught up.
+        assert!(
+            stepped(&mut incision, blade(0.5), false)
+                .unwrap()
+                .is_empty()
+        );
+        let cut = stepped(&mut incision, blade(0.5), true).unwrap();
+        assert_eq!(cut.len(), 1);
+        assert_eq!(incision.end(), blade(0.5));
+        assert!(stepped(&mut incision, blade(0.5), true).unwrap().is_empty());
+    }
+
+    #[test]
+    fn without_min_advance_every_move_is_cut() {
+        let mut incision = Incision::new(blade(0.0), 0.0).unwrap();
+        for k in 1..4 {
+            let cut = stepped(&mut incision, blade(1e-3 * k as f64), false).unwrap();
+            assert_eq!(cut.len(), 1);
+        }
+        // A blade that did not move cuts nothing.
+        assert!(
+            stepped(&mut incision, blade(3e-3), false)
+                .unwrap()
+                .is_empty()
+        );
+    }
+
+    #[test]
+    fn a_failed_cut_leaves_the_incision_as_it_was() {
+        let mut incision = Incision::new(blade(0.0), 0.1).unwrap();
+        let was = incision;
+        let failed = incision.step(blade(0.5), |_| Err(PolygonError::Degenerate));
+        assert!(failed.is_err());
+        assert_eq!(incision, was);
+        // A bad position too.
+        let bad = [DVec3::new(f64::NAN, 0.0, 0.0), DVec3::Z];
+        assert!(incision.step(bad, |_| Ok::<(), PolygonError>(())).is_err());
+        assert_eq!(incision, was);
+    }
+
+    #[test]
+    fn min_advance_must_be_a_length() {
+        for bad in [-1.0, f64::NAN, f64::INFINITY] {
+            assert!(matches!(
+                Incision::new(blade(0.0), bad),
+                Err(ScalpelError::MinAdvance(_))
+            ));
+        }
     }
 }

@@ -372,7 +372,9 @@ unsafe fn cut_polygon(
 /// `MTCUT_STATUS_INVALID_ARGUMENT` with the mesh unchanged. Called once per time step on
 /// the same handle, each step continues the crack the earlier ones made (the handle keeps
 /// its crack tips): with NULL options those of `mtcut_cut_options_scalpel`, which a blade
-/// moving straight, turning or tilting needs; start from them to change options.
+/// moving straight, turning or tilting needs; start from them to change options. Steps
+/// much shorter than the mesh's edges fill the crack's front with slivers: see
+/// `mtcut_blade_advance` for deferring them.
 /// Statistics as in `mtcut_mesh_cut_with_options`; for two triangles the counts and times
 /// add up. (The one
 /// failure found after the first triangle was applied: the second would make the mesh
@@ -412,6 +414,45 @@ pub unsafe extern "C" fn mtcut_mesh_scalpel_sweep(
         if let Some(out) = stats {
             out.write(result);
         }
+        Ok(())
+    })
+}
+
+/// How far a blade has moved across its own line: the larger distance of `to_xyz`'s two
+/// ends (`to_xyz[0..3]`, `to_xyz[3..6]`) from the line through `from_xyz`'s, into
+/// `*advance` (a blade sliding along its edge has not moved; one turning about its middle
+/// has moved as far as its ends). A blade moved in steps much shorter than the mesh's
+/// edges splits the tets at its crack's front again at every step, filling it with
+/// slivers; a host defers a step while the advance from where its crack ends (the end of
+/// the last sweep it cut) is below about half `mtcut_mesh_median_edge_length`, then cuts
+/// the sweep from there, and at the end of its path cuts what is left (as
+/// `mtcut::cut::Incision` and `mtcut scalpel --min-advance` do; see the README, "A scalpel
+/// on a plain mesh"). A coordinate that is not finite or larger in magnitude than 1e50
+/// gives `MTCUT_STATUS_INVALID_ARGUMENT`, nothing written.
+///
+/// # Safety
+/// `from_xyz` and `to_xyz` readable for 6 doubles each; `advance` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mtcut_blade_advance(
+    from_xyz: *const f64,
+    to_xyz: *const f64,
+    advance: *mut f64,
+) -> mtcut_status {
+    run("mtcut_blade_advance", || {
+        // SAFETY: the caller's contract, forwarded to the checks.
+        let (from, to, advance) = unsafe {
+            (
+                points(from_xyz, 2, "from_xyz")?,
+                points(to_xyz, 2, "to_xyz")?,
+                Out::new(advance, "advance")?,
+            )
+        };
+        crate::geom::check_points(&from).map_err(|e| polygon_failure(e, "from_xyz"))?;
+        crate::geom::check_points(&to).map_err(|e| polygon_failure(e, "to_xyz"))?;
+        advance.write(crate::cut::blade_advance(
+            [from[0], from[1]],
+            [to[0], to[1]],
+        ));
         Ok(())
     })
 }

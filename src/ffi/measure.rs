@@ -103,6 +103,29 @@ pub unsafe extern "C" fn mtcut_mesh_volume(
     })
 }
 
+/// The median length of the tets' edges (each counted once per tet holding it) into
+/// `*length`: a typical edge, the unit in which to defer a scalpel's short steps (see
+/// `mtcut_blade_advance`). A mesh without tets gives `MTCUT_STATUS_INVALID_ARGUMENT`,
+/// nothing written.
+///
+/// # Safety
+/// `mesh` must be a live mesh handle; `length` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mtcut_mesh_median_edge_length(
+    mesh: *const mtcut_mesh,
+    length: *mut f64,
+) -> mtcut_status {
+    run("mtcut_mesh_median_edge_length", || {
+        // SAFETY: the caller's contract, forwarded to the checks.
+        let (mesh, length) = unsafe { (mesh_ref(mesh)?, Out::new(length, "length")?) };
+        let median = mesh
+            .median_edge_length()
+            .ok_or_else(|| Failure::invalid("mesh: it has no tets, so no edges to measure"))?;
+        length.write(median);
+        Ok(())
+    })
+}
+
 /// The axis-aligned bounding box of all vertices: `min_xyz` and `max_xyz` receive three
 /// doubles each.
 ///

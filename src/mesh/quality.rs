@@ -122,6 +122,23 @@ impl TetMesh {
         s.mean_aspect_ratio /= s.tets as f64;
         s
     }
+
+    /// The median length of the tets' edges (each edge counted once per tet holding it), a
+    /// typical edge of the mesh: the unit of a scalpel's `min_advance`
+    /// ([`crate::cut::Incision`]). None for a mesh without tets.
+    pub fn median_edge_length(&self) -> Option<f64> {
+        let p = self.positions();
+        let mut lengths: Vec<f64> = self
+            .tets()
+            .iter()
+            .flat_map(|t| TET_EDGES.map(|[a, b]| p[t[a].idx()].distance(p[t[b].idx()])))
+            .collect();
+        if lengths.is_empty() {
+            return None;
+        }
+        let mid = lengths.len() / 2;
+        Some(*lengths.select_nth_unstable_by(mid, f64::total_cmp).1)
+    }
 }
 
 #[cfg(test)]

@@ -24,6 +24,18 @@ pub fn threshold(text: &str) -> Result<f64, String> {
     }
 }
 
+/// A scalpel's `--min-advance`: a finite number ≥ 0 (of median edge lengths).
+pub fn min_advance(text: &str) -> Result<f64, String> {
+    let x = number(text)?;
+    if x.is_finite() && x >= 0.0 {
+        Ok(x)
+    } else {
+        Err(format!(
+            "{x} is not a valid advance (expected a finite number ≥ 0 of median edge lengths)"
+        ))
+    }
+}
+
 /// A positive whole number (a tet count).
 pub fn count(text: &str) -> Result<usize, String> {
     let t = text.trim();

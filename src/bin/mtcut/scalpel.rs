@@ -17,6 +17,12 @@
 //! coarser levels) or that leaves an invalid model stops the run with an error naming the
 //! step; the steps before it stay written and listed, and `--save` writes nothing.
 //!
+//! `--min-advance F` defers a step until the blade is F × the median edge length of the
+//! mesh (a model's finest mesh) from where the incision ends, then cuts all the area swept
+//! since ([`mtcut::cut::Incision`]): a path of steps much shorter than the edges otherwise
+//! fills the crack's front with slivers. The last step cuts what is left. 0, the default,
+//! cuts every step.
+//!
 //! Given a mesh instead of a model (any readable mesh file), the scalpel cuts the mesh
 //! itself, each step continuing the crack of the earlier ones
 //! ([`mtcut::cut::CutOptions::SCALPEL`]: a blade that turns or tilts works there), the mesh
@@ -24,8 +30,8 @@
 
 use crate::CliResult;
 use crate::parse;
-use mtcut::cut::{Blade, CutOptions, Cutter, LiveMt, PendingBudget, Scalpel};
-use mtcut::geom::{DVec3, SWEEP_PLANARITY, scalpel_sweep};
+use mtcut::cut::{Blade, CutOptions, Cutter, Incision, LiveMt, PendingBudget, Scalpel};
+use mtcut::geom::{CutPolygon, DVec3};
 use mtcut::io::{PvdEntry, read_mesh, write_mesh, write_pvd};
 use mtcut::mesh::TetMesh;
 use mtcut::mt::{ExtractOptions, Mt};
@@ -66,9 +72,35 @@ pub struct Args {
     /// or .node/.ele).
     #[arg(long, value_name = "OUT.mt")]
     save: Option<PathBuf>,
+    /// Defer a step until the blade is F × the median edge length from where the incision
+    /// ends (0: cut every step); the last step cuts what is left.
+    #[arg(long, value_name = "F", default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse::min_advance)]
+    min_advance: f64,
     /// Print the statistics as one JSON object.
     #[arg(long)]
     json: bool,
+}
+
+/// The incision of a run: its blade at the path's start, deferring steps shorter than
+/// `--min-advance` edges of `mesh` (computed only when asked).
+fn incision(
+    args: &Args,
+    start: Blade,
+    mesh: impl FnOnce() -> Result<TetMesh, String>,
+) -> Result<Incision, Box<dyn std::error::Error>> {
+    let length = if args.min_advance > 0.0 {
+        let mesh = mesh()?;
+        let edge = mesh.median_edge_length().ok_or_else(|| {
+            format!(
+                "{}: no tets to measure --min-advance by",
+                args.model.display()
+            )
+        })?;
+        args.min_advance * edge
+    } else {
+        0.0
+    };
+    Ok(Incision::new(start, length)?)
 }
 
 /// The blade positions of a path file.
@@ -142,7 +174,14 @@ pub fn run(args: Args) -> CliResult {
     if args.time_critical {
         return run_time_critical(&args, mt, &blades, &options);
     }
+    let finest = || {
+        mt.extract(&ExtractOptions::FINEST)
+            .map(|e| e.mesh)
+            .map_err(|e| e.to_string())
+    };
+    let min_advance = incision(&args, blades[0], finest)?.min_advance();
     let mut scalpel = Scalpel::new(mt, blades[0])?;
+    scalpel.set_min_advance(min_advance)?;
     let mut series = Series::new(&args.output);
     let mut steps: Vec<Value> = Vec::new();
     // Writes step k's mesh; whether it met the budget (as `extract`, a coarsest mesh over
@@ -163,9 +202,13 @@ pub fn run(args: Args) -> CliResult {
     write_step(0, scalpel.mt(), &mut series)?;
     let start = Instant::now();
     for (k, &to) in blades.iter().enumerate().skip(1) {
-        let step = scalpel
-            .step(to)
-            .map_err(|e| failed_step(k, &e, &args.output))?;
+        let failed = |e: &dyn std::fmt::Display| failed_step(k, e, &args.output);
+        let mut step = scalpel.step(to).map_err(|e| failed(&e))?;
+        if k + 1 == blades.len() {
+            let rest = scalpel.catch_up().map_err(|e| failed(&e))?;
+            step.cuts.extend(rest.cuts);
+            step.deferred = false;
+        }
         let t_validate = Instant::now();
         let report = scalpel.mt().validate();
         let validate_seconds = t_validate.elapsed().as_secs_f64();
@@ -178,6 +221,7 @@ pub fn run(args: Args) -> CliResult {
             steps.push(json!({
                 "step": k,
                 "budget_met": budget_met,
+                "deferred": step.deferred,
                 "polygons": step.cuts.len(),
                 "tets_cut": step.tets_cut(),
                 "cuts": step.cuts.iter().map(|s| s.to_json()).collect::<Vec<_>>(),
@@ -187,9 +231,10 @@ pub fn run(args: Args) -> CliResult {
             }));
         } else {
             out!(
-                "step {k:<4}  {} polygon(s), {} tets cut, {} component(s), {:.4} s (validate \
+                "step {k:<4}  {} polygon(s){}, {} tets cut, {} component(s), {:.4} s (validate \
                  {validate_seconds:.3} s)",
                 step.cuts.len(),
+                if step.deferred { " (deferred)" } else { "" },
                 step.tets_cut(),
                 components,
                 step.seconds()
@@ -243,19 +288,30 @@ fn finish(args: &Args, mt: Mt, steps: Vec<Value>, series: &Series, seconds: f64)
 /// `--time-critical`: each step cuts the current mesh first ([`LiveMt::cut`], the mesh
 /// written then), then the queued MT cut ([`LiveMt::process_pending`]), then validates both.
 fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOptions) -> CliResult {
+    let finest = || {
+        mt.extract(&ExtractOptions::FINEST)
+            .map(|e| e.mesh)
+            .map_err(|e| e.to_string())
+    };
+    let mut incision = incision(args, blades[0], finest)?;
     let mut live = LiveMt::new(mt, options, Scalpel::OPTIONS)?;
     let mut series = Series::new(&args.output);
     series.write(0, live.mesh())?;
     let start = Instant::now();
     let mut steps: Vec<Value> = Vec::new();
-    for (k, w) in blades.windows(2).enumerate().map(|(k, w)| (k + 1, w)) {
+    for (k, &to) in blades.iter().enumerate().skip(1) {
         let failed = |e: &dyn std::fmt::Display| failed_step(k, e, &args.output);
-        let sweep = scalpel_sweep(w[0], w[1], SWEEP_PLANARITY).map_err(|e| failed(&e))?;
-        let (mut frontier_s, mut tets_cut) = (0.0, 0);
-        for polygon in &sweep {
-            let c = live.cut(polygon).map_err(|e| failed(&e))?;
+        let (mut polygons, mut frontier_s, mut tets_cut) = (0, 0.0, 0);
+        let mut cut = |polygon: &CutPolygon| -> Result<(), Box<dyn std::error::Error>> {
+            let c = live.cut(polygon)?;
+            polygons += 1;
             frontier_s += c.seconds;
             tets_cut += c.stats.tets_cut;
+            Ok(())
+        };
+        incision.step(to, &mut cut).map_err(|e| failed(&e))?;
+        if k + 1 == blades.len() {
+            incision.catch_up(&mut cut).map_err(|e| failed(&e))?;
         }
         series.write(k, live.mesh())?;
         let r = live
@@ -277,7 +333,8 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         if args.json {
             steps.push(json!({
                 "step": k,
-                "polygons": sweep.len(),
+                "deferred": polygons == 0 && incision.is_behind(),
+                "polygons": polygons,
                 "current_tets_cut": tets_cut,
                 "seconds_frontier_first": frontier_s,
                 "seconds_pending": r.seconds,
@@ -332,30 +389,32 @@ fn run_mesh(args: &Args) -> CliResult {
     let blades = read_path(&args.path)?;
     let (mesh, _) = read_mesh(&args.model)?;
     parse::output_folder(&args.output)?;
+    let mut incision = incision(args, blades[0], || Ok(mesh.clone()))?;
     let mut cutter = Cutter::new(mesh, CutOptions::SCALPEL)?;
     let mut series = Series::new(&args.output);
     series.write(0, cutter.mesh())?;
     let start = Instant::now();
     let mut steps: Vec<Value> = Vec::new();
     let mut components = 1;
-    for (k, w) in blades.windows(2).enumerate().map(|(k, w)| (k + 1, w)) {
+    for (k, &to) in blades.iter().enumerate().skip(1) {
         let failed =
             |e: &dyn std::fmt::Display| format!("step {k}: {e}; steps 0-{} written", k - 1);
         // A blade that did not move sweeps nothing: a step without cuts, as for a model.
-        let sweep = if w[0] == w[1] {
-            Vec::new()
-        } else {
-            scalpel_sweep(w[0], w[1], SWEEP_PLANARITY).map_err(|e| failed(&e))?
-        };
         let (mut seconds, mut tets_cut) = (0.0, 0);
         let mut cuts: Vec<Value> = Vec::new();
-        for polygon in &sweep {
-            let r = cutter.cut(polygon).map_err(|e| failed(&e))?;
+        let mut cut = |polygon: &CutPolygon| -> Result<(), Box<dyn std::error::Error>> {
+            let r = cutter.cut(polygon)?;
             seconds += r.stats.time.cut;
             tets_cut += r.stats.tets_cut;
             components = r.stats.components.unwrap_or(components);
             cuts.push(r.stats.to_json());
+            Ok(())
+        };
+        incision.step(to, &mut cut).map_err(|e| failed(&e))?;
+        if k + 1 == blades.len() {
+            incision.catch_up(&mut cut).map_err(|e| failed(&e))?;
         }
+        let deferred = cuts.is_empty() && incision.is_behind();
         let t_validate = Instant::now();
         let report = cutter.mesh().validate();
         let validate_seconds = t_validate.elapsed().as_secs_f64();
@@ -366,7 +425,8 @@ fn run_mesh(args: &Args) -> CliResult {
         if args.json {
             steps.push(json!({
                 "step": k,
-                "polygons": sweep.len(),
+                "deferred": deferred,
+                "polygons": cuts.len(),
                 "tets_cut": tets_cut,
                 "cuts": cuts,
                 "components": components,
@@ -375,9 +435,10 @@ fn run_mesh(args: &Args) -> CliResult {
             }));
         } else {
             out!(
-                "step {k:<4}  {} polygon(s), {tets_cut} tets cut, {components} component(s), \
+                "step {k:<4}  {} polygon(s){}, {tets_cut} tets cut, {components} component(s), \
                  {seconds:.4} s (validate {validate_seconds:.3} s)",
-                sweep.len()
+                cuts.len(),
+                if deferred { " (deferred)" } else { "" }
             );
         }
     }
