@@ -438,10 +438,12 @@ fn a_scalpel_deferring_short_steps_cuts_every_few_steps_and_separates_the_body()
 }
 
 /// A vertical blade turning by 0.5° per step (about a sixth of a median edge) for 128
-/// steps: cut at every step, the MT refuses it at step 43 on fandisk and step 65 on pinion
-/// (the levels disagree where a step begins at an angle to the last crack, see
-/// `mtcut::cut::scalpel`'s limits); deferred until the blade is half an edge on, every step
-/// goes through and leaves the MT valid. (On liver, step 48 is still refused; 42 without.)
+/// steps: cut at every step, the MT refuses it at step 43 on fandisk and 65 on pinion (the
+/// levels disagree where a step begins at an angle to the last crack, see
+/// `mtcut::cut::scalpel`'s limits); deferred until the blade is half an edge on, every
+/// step goes through and leaves the MT valid. (Liver: refused at step 42 cut at every
+/// step, 48 deferred at half an edge; deferred at one edge every step is taken, but at
+/// step 108 the coarsest mesh keeps an edge crossing an earlier step's polygon.)
 #[test]
 fn a_blade_turning_in_short_steps_goes_through_when_deferred() {
     for name in ["fandisk", "pinion"] {
