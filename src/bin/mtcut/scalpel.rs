@@ -103,6 +103,13 @@ fn incision(
     Ok(Incision::new(start, length)?)
 }
 
+/// A model's finest mesh, what `--min-advance` measures edges on.
+fn finest(mt: &Mt) -> Result<TetMesh, String> {
+    mt.extract(&ExtractOptions::FINEST)
+        .map(|e| e.mesh)
+        .map_err(|e| e.to_string())
+}
+
 /// The blade positions of a path file.
 fn read_path(path: &Path) -> Result<Vec<Blade>, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -174,12 +181,7 @@ pub fn run(args: Args) -> CliResult {
     if args.time_critical {
         return run_time_critical(&args, mt, &blades, &options);
     }
-    let finest = || {
-        mt.extract(&ExtractOptions::FINEST)
-            .map(|e| e.mesh)
-            .map_err(|e| e.to_string())
-    };
-    let min_advance = incision(&args, blades[0], finest)?.min_advance();
+    let min_advance = incision(&args, blades[0], || finest(&mt))?.min_advance();
     let mut scalpel = Scalpel::new(mt, blades[0])?;
     scalpel.set_min_advance(min_advance)?;
     let mut series = Series::new(&args.output);
@@ -288,12 +290,7 @@ fn finish(args: &Args, mt: Mt, steps: Vec<Value>, series: &Series, seconds: f64)
 /// `--time-critical`: each step cuts the current mesh first ([`LiveMt::cut`], the mesh
 /// written then), then the queued MT cut ([`LiveMt::process_pending`]), then validates both.
 fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOptions) -> CliResult {
-    let finest = || {
-        mt.extract(&ExtractOptions::FINEST)
-            .map(|e| e.mesh)
-            .map_err(|e| e.to_string())
-    };
-    let mut incision = incision(args, blades[0], finest)?;
+    let mut incision = incision(args, blades[0], || finest(&mt))?;
     let mut live = LiveMt::new(mt, options, Scalpel::OPTIONS)?;
     let mut series = Series::new(&args.output);
     series.write(0, live.mesh())?;
