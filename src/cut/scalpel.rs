@@ -239,32 +239,28 @@ impl Scalpel {
     /// nothing. On error the blade stays where it was and so does the MT, except after a
     /// non-planar sweep whose second triangle failed (the first was cut).
     pub fn step(&mut self, to: Blade) -> Result<ScalpelStep, ScalpelError> {
-        if to == self.incision.blade() {
-            return Ok(ScalpelStep {
-                cuts: Vec::new(),
-                deferred: self.incision.is_behind(),
-            });
+        let mut cuts = Vec::new();
+        if to != self.incision.blade() {
+            self.incision
+                .step(to, cut_into(&mut self.cutter, &mut cuts))?;
         }
-        let mut step = ScalpelStep::default();
-        let cutter = &mut self.cutter;
-        let cut = self.incision.step(to, |p| -> Result<(), ScalpelError> {
-            step.cuts.push(cutter.cut(p)?);
-            Ok(())
-        })?;
-        step.deferred = !cut && self.incision.is_behind();
-        Ok(step)
+        Ok(ScalpelStep {
+            cuts,
+            // A step that cut leaves the crack at the blade.
+            deferred: self.incision.is_behind(),
+        })
     }
 
     /// Cuts the area deferred steps left, so the crack ends at the blade (at the end of a
     /// path); nothing when none was deferred.
     pub fn catch_up(&mut self) -> Result<ScalpelStep, ScalpelError> {
-        let mut step = ScalpelStep::default();
-        let cutter = &mut self.cutter;
-        self.incision.catch_up(|p| -> Result<(), ScalpelError> {
-            step.cuts.push(cutter.cut(p)?);
-            Ok(())
-        })?;
-        Ok(step)
+        let mut cuts = Vec::new();
+        self.incision
+            .catch_up(cut_into(&mut self.cutter, &mut cuts))?;
+        Ok(ScalpelStep {
+            cuts,
+            deferred: false,
+        })
     }
 
     pub fn blade(&self) -> Blade {
@@ -288,6 +284,18 @@ impl Scalpel {
     /// The MT (deferred steps not cut: see [`Scalpel::catch_up`]).
     pub fn into_mt(self) -> Mt {
         self.cutter.into_mt()
+    }
+}
+
+/// What an [`Incision`] of a [`Scalpel`] cuts with: `cutter`, each cut's statistics
+/// appended to `cuts`.
+fn cut_into<'a>(
+    cutter: &'a mut MtCutter,
+    cuts: &'a mut Vec<MtCutStats>,
+) -> impl FnMut(&CutPolygon) -> Result<(), ScalpelError> + 'a {
+    move |polygon| {
+        cuts.push(cutter.cut(polygon)?);
+        Ok(())
     }
 }
 

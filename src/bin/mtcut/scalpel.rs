@@ -209,7 +209,7 @@ pub fn run(args: Args) -> CliResult {
         if k + 1 == blades.len() {
             let rest = scalpel.catch_up().map_err(|e| failed(&e))?;
             step.cuts.extend(rest.cuts);
-            step.deferred = false;
+            step.deferred = rest.deferred;
         }
         let t_validate = Instant::now();
         let report = scalpel.mt().validate();
@@ -330,7 +330,7 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         if args.json {
             steps.push(json!({
                 "step": k,
-                "deferred": polygons == 0 && incision.is_behind(),
+                "deferred": incision.is_behind(),
                 "polygons": polygons,
                 "current_tets_cut": tets_cut,
                 "seconds_frontier_first": frontier_s,
@@ -411,7 +411,8 @@ fn run_mesh(args: &Args) -> CliResult {
         if k + 1 == blades.len() {
             incision.catch_up(&mut cut).map_err(|e| failed(&e))?;
         }
-        let deferred = cuts.is_empty() && incision.is_behind();
+        // A step that cut leaves the crack at the blade.
+        let deferred = incision.is_behind();
         let t_validate = Instant::now();
         let report = cutter.mesh().validate();
         let validate_seconds = t_validate.elapsed().as_secs_f64();
