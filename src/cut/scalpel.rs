@@ -43,9 +43,9 @@
 //! 22 cuts and 7,584 tets). On an MT it also spares the levels steps at an angle: a
 //! blade turning by 0.5° per step, refused at step 43, 65 and 42 of fandisk's, pinion's
 //! and liver's MTs when cut at every step, goes through all 128 steps of fandisk's and
-//! pinion's deferred at half an edge (liver's refuses step 48; at one edge it takes them
-//! all, but its coarsest mesh keeps an edge crossing an earlier step's polygon). The price is a crack lagging the blade by less than
-//! `min_advance`; [`Incision::catch_up`] cuts what is left at the end of a path.
+//! pinion's deferred at half an edge (liver's refuses step 48, and takes them all at one
+//! edge). The price is a crack lagging the blade by less than `min_advance`;
+//! [`Incision::catch_up`] cuts what is left at the end of a path.
 
 use super::mt_cut::{MtCutStats, MtCutter};
 use super::options::{CutError, CutOptions};

@@ -62,9 +62,14 @@ pub fn requests(mt: &Mt, thresholds: usize, regions: usize, rng: &mut Rng) -> Ve
     out
 }
 
-/// How far (relative to its scale) from a cut a crack tip it continues may lie: 1.5 × the
-/// MT cut's face-point margin (`mt_cut::tip_reach`).
+/// How far (relative to its scale) from a cut's plane a crack tip it continues may lie: 1.5
+/// × the MT cut's face-point margin (`mt_cut::tip_reach`).
 const TIP_REACH: f64 = 1.5 * mtcut::cut::MIN_FACE_POINT_MARGIN;
+
+/// How far (relative to its scale) past its polygon's contour a cut may leave a crack tip:
+/// twice the face-point margin (`mt_cut::contour_band`). A cut continuing that crack begins
+/// on that contour, so the tip may lie this far inside the new polygon.
+const TIP_BAND: f64 = 2.0 * mtcut::cut::MIN_FACE_POINT_MARGIN;
 
 /// An edge of `mesh` crossing one of `polygons` strictly inside it, away from vertices
 /// within snapping distance of the plane (`near(v, polygon)`).
@@ -133,14 +138,15 @@ pub fn crossing(
                 continue;
             }
             // A crack tip of an earlier step that this one continues at an angle is
-            // taken onto the cut within the tip reach of C's contour, off the plane
-            // (`mt_cut`'s `TurnTips`): the crack bends through it, so an edge from it
-            // may cross the plane near it (farther along an edge almost in the plane)
-            // without crossing the crack.
+            // taken onto the cut within the tip reach of C's plane (`mt_cut`'s
+            // `TurnTips`): the crack bends through it, so an edge from it may cross the
+            // plane near it (farther along an edge almost in the plane) without crossing
+            // the crack. Such a tip lies near C's contour, up to the band an earlier cut
+            // leaves its tips in on the inner side.
             let bent = |v: usize, d: f64| {
                 let reach = TIP_REACH * scale(v);
                 d.abs() <= reach
-                    && polygon.inside_margin(pos[v]) <= reach
+                    && polygon.inside_margin(pos[v]) <= TIP_BAND * scale(v)
                     && polygon.projection_distance(pos[v]) <= reach
             };
             if bent(u, du) || bent(w, dw) {
