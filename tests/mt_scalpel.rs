@@ -440,7 +440,7 @@ fn a_scalpel_deferring_short_steps_cuts_every_few_steps_and_separates_the_body()
 /// A vertical blade turning by 0.5° per step (about a sixth of a median edge) for 128
 /// steps: cut at every step, the MT refuses it at step 43 on fandisk, 65 on pinion and 42
 /// on liver (the levels disagree where a step begins at an angle to the last crack, see
-/// `mtcut::cut::scalpel`'s limits); deferred until the blade is half an edge on (one edge
+/// `mtcut::cut::scalpel`'s limits; the ignored test below); deferred until the blade is half an edge on (one edge
 /// on liver, which refuses step 48 at half an edge), every step goes through and leaves
 /// the MT valid.
 #[test]
@@ -455,5 +455,24 @@ fn a_blade_turning_in_short_steps_goes_through_when_deferred() {
             cuts < deferred,
             "{name}: {cuts} steps cut, {deferred} deferred"
         );
+    }
+}
+
+/// The 0.5° turn of the test above cut at every step: the steps at a slight angle to the
+/// last crack leave, before the MT cut refuses one, an extraction between the finest and
+/// the coarsest pinched at a crack tip.
+#[test]
+#[ignore = "KNOWN FAILURE (issue 7 open): cut at every step, an extraction between the \
+            finest and the coarsest is pinched at a crack tip (a vertex joining two boundary \
+            fans) from step 41 on fandisk and 60 on pinion, before the MT cut refuses step \
+            43 and 65 (it checks the finest and coarsest meshes only); liver's step 42 is \
+            refused (refused steps skipped, step 51 is pinched)"]
+fn a_blade_turning_in_short_steps_cut_at_every_step() {
+    for name in ["fandisk", "pinion", "liver"] {
+        let b = Run::new(name).bounds();
+        let path: Vec<Blade> = (0..=128)
+            .map(|k| on_arc(&b, -8.0 + 0.5 * k as f64))
+            .collect();
+        deferring_scalpel(name, &path, 0.0);
     }
 }

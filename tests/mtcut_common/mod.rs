@@ -142,12 +142,20 @@ pub fn crossing(
             // `TurnTips`): the crack bends through it, so an edge from it may cross the
             // plane near it (farther along an edge almost in the plane) without crossing
             // the crack. Such a tip lies near C's contour, up to the band an earlier cut
-            // leaves its tips in on the inner side.
+            // leaves its tips in on the inner side, or farther where that cut's face was
+            // long: then it is known by lying in an earlier polygon's plane (up to
+            // rounding) outside that polygon, where a cut leaves only its tips.
+            let earlier_tip = |v: usize| {
+                polygons[..k].iter().any(|q| {
+                    q.signed_distance(pos[v]).abs() <= 1e-9 * scale(v)
+                        && q.inside_margin(pos[v]) < 0.0
+                })
+            };
             let bent = |v: usize, d: f64| {
                 let reach = TIP_REACH * scale(v);
                 d.abs() <= reach
-                    && polygon.inside_margin(pos[v]) <= TIP_BAND * scale(v)
                     && polygon.projection_distance(pos[v]) <= reach
+                    && (polygon.inside_margin(pos[v]) <= TIP_BAND * scale(v) || earlier_tip(v))
             };
             if bent(u, du) || bent(w, dw) {
                 continue;
