@@ -1,6 +1,7 @@
 //! Connected components of a cut mesh, each extractable as a mesh of its own.
 
-use crate::mesh::{FaceAdjacency, TetMesh, VertexId};
+use crate::mesh::{FaceAdjacency, Severity, TetMesh, ValidationReport, VertexId, ViolationKind};
+use std::fmt;
 
 /// The connected components of a mesh (tets joined through shared faces).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -113,7 +114,58 @@ impl Components {
             .filter_map(|k| self.extract(mesh, k))
             .collect()
     }
+
+    /// Whether `mesh` is valid as the bodies of a cut model: [`TetMesh::validate`] finds
+    /// nothing, or its only errors are hanging vertices and each of its components is
+    /// valid alone. Bodies a cut separated touch along the crack, and a mesh extracted
+    /// from a cut MT can show them at different resolutions (each part refined by its
+    /// own errors, or by a focus region): the vertices of one then lie on the faces of
+    /// the other without their tets being joined, which is contact, not a hanging
+    /// vertex. Any other error (an inverted tet, a pinched boundary, a face held three
+    /// times...) is reported.
+    pub fn validate_bodies(mesh: &TetMesh) -> Result<(), InvalidBodies> {
+        let report = mesh.validate();
+        if report.is_valid() {
+            return Ok(());
+        }
+        let only_hanging = report.violations.iter().all(|v| {
+            v.kind == ViolationKind::HangingVertex || v.kind.severity() == Severity::Warning
+        });
+        let parts = Components::of(mesh);
+        if !only_hanging || parts.count < 2 {
+            return Err(InvalidBodies { part: None, report });
+        }
+        for (k, part) in parts.extract_all(mesh).iter().enumerate() {
+            let report = part.validate();
+            if !report.is_valid() {
+                return Err(InvalidBodies {
+                    part: Some((k, parts.count)),
+                    report,
+                });
+            }
+        }
+        Ok(())
+    }
 }
+
+/// What [`Components::validate_bodies`] found: the mesh's report, or that of the first
+/// invalid part (its index and the number of parts).
+#[derive(Clone, Debug, PartialEq)]
+pub struct InvalidBodies {
+    pub part: Option<(usize, usize)>,
+    pub report: ValidationReport,
+}
+
+impl fmt::Display for InvalidBodies {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.part {
+            Some((k, n)) => write!(f, "part {k} of {n}: {}", self.report),
+            None => write!(f, "{}", self.report),
+        }
+    }
+}
+
+impl std::error::Error for InvalidBodies {}
 
 /// Union-find over the vertices of a mesh, each tet's vertices joined: a root is the
 /// lowest vertex of its set.
@@ -161,6 +213,50 @@ mod tests {
             .map(|i| DVec3::new(i as f64, (i * i % 7) as f64, (i * i * i % 11) as f64))
             .collect();
         TetMesh::from_parts(p, tets.into_iter().map(|t| t.map(VertexId)).collect())
+    }
+
+    /// Bodies in contact (a vertex of one on a face of the other, as a cut MT's parts at
+    /// different resolutions) are valid bodies; a pinched or inverted mesh is not.
+    #[test]
+    fn bodies_may_touch_but_not_pinch_or_invert() {
+        let at = |p: &[[f64; 3]], tets: Vec<[u32; 4]>| {
+            TetMesh::from_parts(
+                p.iter().map(|&q| DVec3::from_array(q)).collect(),
+                tets.into_iter().map(|t| t.map(VertexId)).collect(),
+            )
+        };
+        let corners = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        // Below the face z = 0 of the first tet, touching it at an inner point.
+        let below = [
+            [0.25, 0.25, 0.0],
+            [2.0, 0.0, -1.0],
+            [0.0, 2.0, -1.0],
+            [0.0, 0.0, -1.0],
+        ];
+        let touching = at(&[corners, below].concat(), vec![[0, 1, 2, 3], [4, 5, 7, 6]]);
+        assert!(
+            !touching.validate().is_valid(),
+            "the contact is a hanging vertex"
+        );
+        assert_eq!(Components::validate_bodies(&touching), Ok(()));
+        // Touching at a shared vertex: a pinched boundary, not two bodies.
+        let apex = [[2.0, 0.0, -1.0], [0.0, 2.0, -1.0], [0.0, 0.0, -1.0]];
+        let pinched = at(
+            &[&corners[..], &apex[..]].concat(),
+            vec![[0, 1, 2, 3], [0, 4, 6, 5]],
+        );
+        let e = Components::validate_bodies(&pinched).expect_err("pinched");
+        assert!(e.to_string().contains("boundary fans"), "{e}");
+        // Two touching bodies, one inverted: the whole mesh's report names it.
+        let inverted = at(&[corners, below].concat(), vec![[0, 1, 2, 3], [4, 5, 6, 7]]);
+        let e = Components::validate_bodies(&inverted).expect_err("inverted");
+        assert_eq!(e.part, None);
+        assert!(e.to_string().contains("tet 1"), "{e}");
     }
 
     #[test]

@@ -100,7 +100,7 @@ pub mod tables;
 pub mod unglue;
 
 pub use classify::{CrackTips, CutScratch, CutSession, TetClass, VertexOrigin};
-pub use components::Components;
+pub use components::{Components, InvalidBodies};
 pub use cutter::{CUT_COLUMN, Cutter, RETRY_SNAP, cut_mesh, vertex_scales};
 pub use live::{LiveCut, LiveError, LiveMt, PendingBudget, PendingReport};
 pub use mt_cut::{MtCutStats, MtCutTimes, MtCutter};

@@ -174,26 +174,7 @@ pub fn crossing(
 /// another part: bodies a cut separated, in contact along the crack (a focus extraction
 /// may show the two sides at different resolutions). Each part must then be valid alone.
 pub fn valid_mesh(mesh: &TetMesh) -> Result<(), String> {
-    use mtcut::mesh::ViolationKind;
-    let v = mesh.validate();
-    if v.is_valid() {
-        return Ok(());
-    }
-    let only_hanging = v.violations.iter().all(|x| {
-        x.kind == ViolationKind::HangingVertex
-            || x.kind.severity() == mtcut::mesh::Severity::Warning
-    });
-    let parts = mtcut::cut::Components::of(mesh);
-    if !only_hanging || parts.count < 2 {
-        return Err(v.to_string());
-    }
-    for (k, part) in parts.extract_all(mesh).iter().enumerate() {
-        let w = part.validate();
-        if !w.is_valid() {
-            return Err(format!("part {k} of {}: {w}", parts.count));
-        }
-    }
-    Ok(())
+    mtcut::cut::Components::validate_bodies(mesh).map_err(|e| e.to_string())
 }
 
 /// Every invariant after a cut: MT valid; finest and coarsest volumes kept (1e-12

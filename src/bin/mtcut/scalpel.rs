@@ -2,8 +2,9 @@
 //! [--save OUT.mt] [--json]`: a scalpel moved through a model in time steps
 //! ([`mtcut::cut::Scalpel`]), each step cutting every level with the area the blade swept.
 //! After each step the model is validated (exhaustively) and the current mesh (the finest,
-//! or the chosen resolution) is written to `DIR/step-NNNN.vtu` (step 0: before the first
-//! cut), listed with its time step in `DIR/scalpel.pvd` for ParaView.
+//! or the chosen resolution) is checked (valid, the bodies a cut separated allowed to touch:
+//! [`mtcut::cut::Components::validate_bodies`]) and written to `DIR/step-NNNN.vtu` (step 0:
+//! before the first cut), listed with its time step in `DIR/scalpel.pvd` for ParaView.
 //!
 //! `PATH.json` is a list of blade positions, one per time step, each two 3-D points (the
 //! blade's ends): `[[[x,y,z],[x,y,z]], [[x,y,z],[x,y,z]], ...]`, at least two.
@@ -14,8 +15,8 @@
 //!
 //! A step the model refuses (see [`mtcut::cut::scalpel`]'s limits: a path that turns or
 //! tilts, whose sweeps meet at an angle, is refused by the MT cut where it would break the
-//! coarser levels) or that leaves an invalid model stops the run with an error naming the
-//! step; the steps before it stay written and listed, and `--save` writes nothing.
+//! coarser levels) or that leaves an invalid model or current mesh stops the run with an
+//! error naming the step; the steps before it stay written and listed, and `--save` writes nothing.
 //!
 //! `--min-advance F` defers a step until the blade is F × the median edge length of the
 //! mesh (a model's finest mesh) from where the incision ends, then cuts all the area swept
@@ -30,7 +31,7 @@
 
 use crate::CliResult;
 use crate::parse;
-use mtcut::cut::{Blade, CutOptions, Cutter, Incision, LiveMt, PendingBudget, Scalpel};
+use mtcut::cut::{Blade, Components, CutOptions, Cutter, Incision, LiveMt, PendingBudget, Scalpel};
 use mtcut::geom::{CutPolygon, DVec3};
 use mtcut::io::{PvdEntry, read_mesh, write_mesh, write_pvd};
 use mtcut::mesh::TetMesh;
@@ -186,11 +187,15 @@ pub fn run(args: Args) -> CliResult {
     scalpel.set_min_advance(min_advance)?;
     let mut series = Series::new(&args.output);
     let mut steps: Vec<Value> = Vec::new();
-    // Writes step k's mesh; whether it met the budget (as `extract`, a coarsest mesh over
-    // it is written anyway, with a warning).
+    // Writes step k's mesh, valid as the model's bodies (an error otherwise, nothing
+    // written); whether it met the budget (as `extract`, a coarsest mesh over it is
+    // written anyway, with a warning).
     let write_step =
         |k: usize, mt: &Mt, series: &mut Series| -> Result<bool, Box<dyn std::error::Error>> {
             let e = mt.extract(&options)?;
+            if let Err(report) = Components::validate_bodies(&e.mesh) {
+                return Err(invalid_step(k, "current mesh", &report, &args.output));
+            }
             if !e.stats.budget_met && !args.json {
                 eprintln!(
                     "mtcut: warning: step {k}: even the coarsest mesh ({} tets) exceeds the \
@@ -319,13 +324,16 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
             return Err(failed(e).into());
         }
         let t_validate = Instant::now();
-        let (model, mesh) = (live.mt().validate(), live.mesh().validate());
+        let (model, mesh) = (
+            live.mt().validate(),
+            Components::validate_bodies(live.mesh()),
+        );
         let validate_seconds = t_validate.elapsed().as_secs_f64();
         if !model.is_valid() {
             return Err(invalid_step(k, "model", &model, &args.output));
         }
-        if !mesh.is_valid() {
-            return Err(invalid_step(k, "current mesh", &mesh, &args.output));
+        if let Err(report) = mesh {
+            return Err(invalid_step(k, "current mesh", &report, &args.output));
         }
         if args.json {
             steps.push(json!({
@@ -515,11 +523,14 @@ impl Series {
 
 /// The error of step `k`: what went wrong, and what the run leaves behind.
 fn failed_step(k: usize, e: &dyn std::fmt::Display, output: &Path) -> String {
-    format!(
-        "step {k}: {e}; steps 0-{} written to {}, nothing saved",
-        k - 1,
-        output.display()
-    )
+    match k {
+        0 => format!("step 0: {e}; nothing written, nothing saved"),
+        _ => format!(
+            "step {k}: {e}; steps 0-{} written to {}, nothing saved",
+            k - 1,
+            output.display()
+        ),
+    }
 }
 
 /// The error of a step that left an invalid `what` (model or mesh).
