@@ -41,9 +41,9 @@
 //! that far from where the crack ends, then cuts everything swept since in one polygon:
 //! with half the median edge, the 300 steps make 43 cuts and 11,989 tets (with one edge,
 //! 22 cuts and 7,584 tets). On an MT it also spares the levels steps at an angle: a
-//! blade turning by 0.5° per step, refused at step 43, 65 and 42 of fandisk's, pinion's
-//! and liver's MTs when cut at every step (and leaving an extraction between the finest
-//! and the coarsest pinched at a crack tip from step 41 on fandisk and 60 on pinion: see
+//! blade turning by 0.5° per step, refused at step 41, 56 and 42 of fandisk's, pinion's
+//! and liver's MTs when cut at every step (where the levels disagree, or an extraction
+//! between the finest and the coarsest would be pinched at a crack tip: see
 //! [`super::mt_cut`]'s limits), goes through all 128 steps of fandisk's and
 //! pinion's deferred at half an edge (liver's refuses step 48, and takes them all at one
 //! edge). The price is a crack lagging the blade by less than `min_advance`;
