@@ -205,7 +205,7 @@ fn a_step_that_breaks_the_model_stops_the_run() {
 /// the finest and the coarsest pinched at a crack tip (before the MT cut looked for that,
 /// it was taken, and the mesh written at the 7/9 quantile of fragment errors was pinched).
 /// The model refuses it, naming the flaw: the run stops there, the steps before it written
-/// and valid, nothing saved.
+/// and valid, nothing saved; run time-critical, that step's current mesh is written too.
 #[test]
 fn a_step_that_would_pinch_a_coarser_mesh_stops_the_run() {
     let dir = scratch("cli_scalpel_pinched");
@@ -233,6 +233,21 @@ fn a_step_that_would_pinch_a_coarser_mesh_stops_the_run() {
         read_valid(&out.join(format!("step-{k:04}.vtu")));
     }
     assert!(pvd.contains("step-0040.vtu") && !pvd.contains("step-0041.vtu"));
+    // Time-critical, step 41's current mesh is cut and written before the model's cut,
+    // which refuses it: the message says so.
+    let out = dir.join("time-critical");
+    let err = fails(
+        &scalpel_args(&model, &path, &out, &saved, &["--time-critical"]),
+        &[
+            "step 41",
+            "between its finest and coarsest meshes would be pinched",
+            "steps 0-41 written",
+            "nothing saved",
+        ],
+    );
+    assert!(!saved.exists(), "{err}");
+    let pvd = std::fs::read_to_string(out.join("scalpel.pvd")).expect("pvd");
+    assert!(pvd.contains("step-0041.vtu") && !pvd.contains("step-0042.vtu"));
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -16,7 +16,9 @@
 //! A step the model refuses (see [`mtcut::cut::scalpel`]'s limits: a path that turns or
 //! tilts, whose sweeps meet at an angle, is refused by the MT cut where it would break the
 //! coarser levels) or that leaves an invalid model or current mesh stops the run with an
-//! error naming the step; the steps before it stay written and listed, and `--save` writes nothing.
+//! error naming the step and the meshes written: the steps before it (time-critical, that
+//! step's current mesh too, written before the model's cut) stay written and listed, and
+//! `--save` writes nothing.
 //!
 //! `--min-advance F` defers a step until the blade is F × the median edge length of the
 //! mesh (a model's finest mesh) from where the incision ends, then cuts all the area swept
@@ -194,7 +196,13 @@ pub fn run(args: Args) -> CliResult {
         |k: usize, mt: &Mt, series: &mut Series| -> Result<bool, Box<dyn std::error::Error>> {
             let e = mt.extract(&options)?;
             if let Err(report) = Components::validate_bodies(&e.mesh) {
-                return Err(invalid_step(k, "current mesh", &report, &args.output));
+                return Err(invalid_step(
+                    k,
+                    "current mesh",
+                    &report,
+                    series.len(),
+                    &args.output,
+                ));
             }
             if !e.stats.budget_met && !args.json {
                 eprintln!(
@@ -209,10 +217,11 @@ pub fn run(args: Args) -> CliResult {
     write_step(0, scalpel.mt(), &mut series)?;
     let start = Instant::now();
     for (k, &to) in blades.iter().enumerate().skip(1) {
-        let failed = |e: &dyn std::fmt::Display| failed_step(k, e, &args.output);
-        let mut step = scalpel.step(to).map_err(|e| failed(&e))?;
+        let failed =
+            |e: &dyn std::fmt::Display, written: usize| failed_step(k, e, written, &args.output);
+        let mut step = scalpel.step(to).map_err(|e| failed(&e, series.len()))?;
         if k + 1 == blades.len() {
-            let rest = scalpel.catch_up().map_err(|e| failed(&e))?;
+            let rest = scalpel.catch_up().map_err(|e| failed(&e, series.len()))?;
             step.cuts.extend(rest.cuts);
             step.deferred = rest.deferred;
         }
@@ -220,7 +229,13 @@ pub fn run(args: Args) -> CliResult {
         let report = scalpel.mt().validate();
         let validate_seconds = t_validate.elapsed().as_secs_f64();
         if !report.is_valid() {
-            return Err(invalid_step(k, "model", &report, &args.output));
+            return Err(invalid_step(
+                k,
+                "model",
+                &report,
+                series.len(),
+                &args.output,
+            ));
         }
         let budget_met = write_step(k, scalpel.mt(), &mut series)?;
         let components = scalpel.mt().nb_components();
@@ -302,7 +317,8 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
     let start = Instant::now();
     let mut steps: Vec<Value> = Vec::new();
     for (k, &to) in blades.iter().enumerate().skip(1) {
-        let failed = |e: &dyn std::fmt::Display| failed_step(k, e, &args.output);
+        let failed =
+            |e: &dyn std::fmt::Display, written: usize| failed_step(k, e, written, &args.output);
         let (mut polygons, mut frontier_s, mut tets_cut) = (0, 0.0, 0);
         let mut cut = |polygon: &CutPolygon| -> Result<(), Box<dyn std::error::Error>> {
             let c = live.cut(polygon)?;
@@ -311,17 +327,21 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
             tets_cut += c.stats.tets_cut;
             Ok(())
         };
-        incision.step(to, &mut cut).map_err(|e| failed(&e))?;
+        incision
+            .step(to, &mut cut)
+            .map_err(|e| failed(&e, series.len()))?;
         if k + 1 == blades.len() {
-            incision.catch_up(&mut cut).map_err(|e| failed(&e))?;
+            incision
+                .catch_up(&mut cut)
+                .map_err(|e| failed(&e, series.len()))?;
         }
         series.write(k, live.mesh())?;
         let r = live
             .process_pending(PendingBudget::All)
-            .map_err(|e| failed(&e))?;
+            .map_err(|e| failed(&e, series.len()))?;
         // The model refused a cut (and is as it was): stop as a step that broke it would.
         if let Some(e) = r.refused.first() {
-            return Err(failed(e).into());
+            return Err(failed(e, series.len()).into());
         }
         let t_validate = Instant::now();
         let (model, mesh) = (
@@ -330,10 +350,16 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         );
         let validate_seconds = t_validate.elapsed().as_secs_f64();
         if !model.is_valid() {
-            return Err(invalid_step(k, "model", &model, &args.output));
+            return Err(invalid_step(k, "model", &model, series.len(), &args.output));
         }
         if let Err(report) = mesh {
-            return Err(invalid_step(k, "current mesh", &report, &args.output));
+            return Err(invalid_step(
+                k,
+                "current mesh",
+                &report,
+                series.len(),
+                &args.output,
+            ));
         }
         if args.json {
             steps.push(json!({
@@ -403,7 +429,7 @@ fn run_mesh(args: &Args) -> CliResult {
     let mut components = 1;
     for (k, &to) in blades.iter().enumerate().skip(1) {
         let failed =
-            |e: &dyn std::fmt::Display| format!("step {k}: {e}; steps 0-{} written", k - 1);
+            |e: &dyn std::fmt::Display, written: usize| failed_step(k, e, written, &args.output);
         // A blade that did not move sweeps nothing: a step without cuts, as for a model.
         let (mut seconds, mut tets_cut) = (0.0, 0);
         let mut cuts: Vec<Value> = Vec::new();
@@ -415,9 +441,13 @@ fn run_mesh(args: &Args) -> CliResult {
             cuts.push(r.stats.to_json());
             Ok(())
         };
-        incision.step(to, &mut cut).map_err(|e| failed(&e))?;
+        incision
+            .step(to, &mut cut)
+            .map_err(|e| failed(&e, series.len()))?;
         if k + 1 == blades.len() {
-            incision.catch_up(&mut cut).map_err(|e| failed(&e))?;
+            incision
+                .catch_up(&mut cut)
+                .map_err(|e| failed(&e, series.len()))?;
         }
         // A step that cut leaves the crack at the blade.
         let deferred = incision.is_behind();
@@ -425,7 +455,7 @@ fn run_mesh(args: &Args) -> CliResult {
         let report = cutter.mesh().validate();
         let validate_seconds = t_validate.elapsed().as_secs_f64();
         if !report.is_valid() {
-            return Err(invalid_step(k, "mesh", &report, &args.output));
+            return Err(invalid_step(k, "mesh", &report, series.len(), &args.output));
         }
         series.write(k, cutter.mesh())?;
         if args.json {
@@ -521,13 +551,15 @@ impl Series {
     }
 }
 
-/// The error of step `k`: what went wrong, and what the run leaves behind.
-fn failed_step(k: usize, e: &dyn std::fmt::Display, output: &Path) -> String {
-    match k {
-        0 => format!("step 0: {e}; nothing written, nothing saved"),
-        _ => format!(
+/// The error of step `k`: what went wrong, and what the run leaves behind (`written`:
+/// the meshes written, steps 0 to `written - 1`; a time-critical step's own mesh is
+/// written before its queued model cut).
+fn failed_step(k: usize, e: &dyn std::fmt::Display, written: usize, output: &Path) -> String {
+    match written {
+        0 => format!("step {k}: {e}; nothing written, nothing saved"),
+        n => format!(
             "step {k}: {e}; steps 0-{} written to {}, nothing saved",
-            k - 1,
+            n - 1,
             output.display()
         ),
     }
@@ -538,8 +570,9 @@ fn invalid_step(
     k: usize,
     what: &str,
     report: &dyn std::fmt::Display,
+    written: usize,
     output: &Path,
 ) -> Box<dyn std::error::Error> {
     let what = format!("the cut left an invalid {what} ({report})");
-    failed_step(k, &what, output).into()
+    failed_step(k, &what, written, output).into()
 }
