@@ -2096,22 +2096,23 @@ fn tip_fans(
     })
 }
 
-/// Down-closed fragment sets examined per vertex by [`pinched_between`] at most (a vertex
-/// whose tets span more levels is not examined further: none measured came near).
+/// Down-closed fragment sets examined per vertex by [`pinched_between`] at most: the
+/// others of a vertex whose tets span more levels are not examined (the most measured
+/// was 63, on a blade turning in short steps over fandisk).
 const MAX_STAR_SETS: usize = 1 << 14;
 
 /// The first of `vertices` (the vertices a cut put on its surface, and their copies; the
-/// real tets around them among `touched`) that some extraction of the opened MT would leave
-/// pinched (crack faces around it in
-/// separate fans), with a fragment creating a tet around it. The finest and coarsest
-/// meshes are analysed before the cut decides its copies; the meshes between are
-/// examined here, after the DAG update: a vertex's star in an extraction is the tets
-/// around it whose creator is applied and whose destroyer is not, so the stars of every
-/// extraction are those of the sets of fragments around the vertex closed under the
-/// order its own tets give (each tet's creator before its destroyer; the root applied,
-/// the drain not). That order can be weaker than the DAG's (paths through fragments not
-/// around the vertex), so sets no extraction has are examined too: measured on a turning
-/// blade's steps over fandisk, they found no pinch the DAG's order did not.
+/// real tets around them among `touched`) that some extraction of the opened MT would
+/// leave pinched (crack faces around it in separate fans), with a fragment creating a tet
+/// around it. The finest and coarsest meshes are analysed before the cut decides its
+/// copies; the meshes between are examined here, after the DAG update: a vertex's star in
+/// an extraction is the tets around it whose creator is applied and whose destroyer is
+/// not, so the stars of every extraction are those of the sets of fragments around the
+/// vertex closed under the order its own tets give (each tet's creator before its
+/// destroyer; the root applied, the drain not). That order can be weaker than the DAG's
+/// (paths through fragments not around the vertex), so sets no extraction has are
+/// examined too: measured on a blade turning in short steps over fandisk, they found no
+/// pinch the DAG's order did not.
 fn pinched_between(
     open: &OpenMt,
     vertices: &[VertexId],
@@ -2204,10 +2205,10 @@ impl StarSets<'_> {
         budget: &mut usize,
         found: &mut impl FnMut(&[bool]) -> bool,
     ) -> bool {
+        if *budget == 0 {
+            return false;
+        }
         let Some(&i) = self.order.get(k) else {
-            if *budget == 0 {
-                return false;
-            }
             *budget -= 1;
             return found(applied);
         };
@@ -3266,6 +3267,48 @@ mod tests {
         assert!(
             cracked_seen,
             "no cut left a fragment cracked: the test shows nothing"
+        );
+    }
+
+    /// The fragment sets a vertex's stars are read from: the root always applied, the
+    /// drain never, a fragment only with those before it; no more than the budget.
+    #[test]
+    fn star_sets_are_the_closed_sets_of_the_order() {
+        use FragmentKind::{Collapse, Drain, Root};
+        let count = |kinds: &[FragmentKind], before: &[Vec<usize>], budget: usize| {
+            let mut order: Vec<usize> = (0..kinds.len()).collect();
+            order.sort_by_key(|&i| before[i].len());
+            let sets = StarSets {
+                order: &order,
+                before,
+                kinds,
+            };
+            let mut seen: Vec<Vec<bool>> = Vec::new();
+            let mut budget = budget;
+            let mut applied = vec![false; kinds.len()];
+            let hit = sets.any(0, &mut applied, &mut budget, &mut |a: &[bool]| {
+                seen.push(a.to_vec());
+                false
+            });
+            assert!(!hit);
+            seen
+        };
+        // A chain root -> a -> drain: the root alone, or with a.
+        let chain = count(
+            &[Root, Collapse, Drain],
+            &[vec![], vec![0], vec![0, 1]],
+            100,
+        );
+        assert_eq!(chain, [vec![true, false, false], vec![true, true, false]]);
+        // A diamond root -> a, b -> drain: a and b each with or without the other.
+        let before = [vec![], vec![0], vec![0], vec![0, 1, 2]];
+        let diamond = count(&[Root, Collapse, Collapse, Drain], &before, 100);
+        assert_eq!(diamond.len(), 4);
+        assert!(diamond.iter().all(|a| a[0] && !a[3]));
+        // The budget stops the search.
+        assert_eq!(
+            count(&[Root, Collapse, Collapse, Drain], &before, 3).len(),
+            3
         );
     }
 
