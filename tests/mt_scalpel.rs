@@ -356,11 +356,15 @@ fn a_blade_in_an_axis_aligned_plane_across_fandisk() {
     assert!(run.components() >= 2, "fandisk: the blade did not separate");
 }
 
+/// Down-closed fragment sets tried per vertex by `pinched_extraction` at most.
+const MAX_SETS: usize = 1 << 14;
+
 /// A [`Scalpel`] on `name`'s MT moved along `path`, deferring steps until the blade is
 /// `edges` median edges (of the finest mesh) from where its crack ends, then catching up:
 /// a deferred step leaves the MT as it was, each cutting step (and the catch-up) leaves it
-/// valid, every level as [`Run::sweep`] checks. Returns the scalpel, the steps cut and the
-/// steps deferred.
+/// valid, every level as [`Run::sweep`] checks, and every fourth (and the catch-up) no
+/// extraction pinched at a vertex the cuts made (`pinched_extraction`: every extraction,
+/// not only those sampled). Returns the scalpel, the steps cut and the steps deferred.
 fn deferring_scalpel(name: &'static str, path: &[Blade], edges: f64) -> (Scalpel, usize, usize) {
     let run = Run::new(name);
     let finest = run
@@ -369,6 +373,7 @@ fn deferring_scalpel(name: &'static str, path: &[Blade], edges: f64) -> (Scalpel
         .extract(&mtcut::mt::ExtractOptions::FINEST)
         .expect("finest");
     let edge = finest.mesh.median_edge_length().expect("tets");
+    let first_cut_vertex = run.cutter.mt().nb_vertices();
     let mut scalpel = Scalpel::new(run.cutter.mt().clone(), path[0]).expect("scalpel");
     scalpel.set_min_advance(edges * edge).expect("a length");
     assert!(scalpel.set_min_advance(f64::NAN).is_err());
@@ -396,6 +401,12 @@ fn deferring_scalpel(name: &'static str, path: &[Blade], edges: f64) -> (Scalpel
         let req = requests(scalpel.mt(), 10, 0, &mut Rng(k as u64));
         check_after_cut(scalpel.cutter(), run.volumes, &polygons, &req)
             .unwrap_or_else(|m| panic!("{name} step {k}: {m}"));
+        // Every extraction's star at the vertices cuts made (costly: every fourth cut).
+        if cuts % 4 == 0 {
+            if let Some(m) = pinched_extraction(scalpel.mt(), first_cut_vertex, MAX_SETS) {
+                panic!("{name} step {k}: an extraction is pinched at {m}");
+            }
+        }
     }
     let from = scalpel.incision().end();
     let rest = scalpel.catch_up().expect("catch up");
@@ -406,6 +417,9 @@ fn deferring_scalpel(name: &'static str, path: &[Blade], edges: f64) -> (Scalpel
     let req = requests(scalpel.mt(), 10, 1, &mut Rng(path.len() as u64));
     check_after_cut(scalpel.cutter(), run.volumes, &polygons, &req)
         .unwrap_or_else(|m| panic!("{name} caught up: {m}"));
+    if let Some(m) = pinched_extraction(scalpel.mt(), first_cut_vertex, MAX_SETS) {
+        panic!("{name} caught up: an extraction is pinched at {m}");
+    }
     println!(
         "{name} MT, {} steps: {cuts} cut, {deferred} deferred",
         path.len() - 1
@@ -467,6 +481,7 @@ fn a_blade_turning_in_short_steps_goes_through_when_deferred() {
 fn a_blade_turning_in_short_steps_is_refused_before_an_extraction_pinches() {
     let name = "fandisk";
     let mut run = Run::new(name);
+    let first_cut_vertex = run.cutter.mt().nb_vertices();
     let b = run.bounds();
     for k in 1..=128 {
         let sweep = scalpel_sweep(
@@ -485,6 +500,9 @@ fn a_blade_turning_in_short_steps_is_refused_before_an_extraction_pinches() {
                 let req = requests(run.cutter.mt(), 10, 0, &mut Rng(k as u64));
                 check_after_cut(&run.cutter, run.volumes, &run.polygons, &req)
                     .unwrap_or_else(|m| panic!("{name} step {k}: {m}"));
+                if let Some(m) = pinched_extraction(run.cutter.mt(), first_cut_vertex, MAX_SETS) {
+                    panic!("{name} step {k}: an extraction is pinched at {m}");
+                }
             }
             Err(e @ CutError::MtInconsistent { .. }) => {
                 let m = e.to_string();

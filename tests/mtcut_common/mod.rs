@@ -250,3 +250,170 @@ pub fn projected_onto(polygon: &CutPolygon, onto: &CutPolygon) -> CutPolygon {
         .collect();
     CutPolygon::new(&corners).expect("projected polygon")
 }
+
+/// The first vertex from `first` on (the vertices cuts made) that some extraction of `mt`
+/// leaves pinched: its tets there in separate boundary fans. Every extraction's star at a
+/// vertex is read from a down-closed set of the fragments creating or destroying its tets,
+/// in the DAG's order (which the MT cut's own check approximates by the order of the
+/// vertex's tets): all such sets are tried, up to `max_sets` per vertex.
+pub fn pinched_extraction(mt: &Mt, first: usize, max_sets: usize) -> Option<String> {
+    use mtcut::mesh::{FragmentId, TetId};
+    use mtcut::mt::FragmentKind;
+    let nv = mt.nb_vertices();
+    let mut around: Vec<(u32, u32)> = Vec::new();
+    for t in 0..mt.nb_tets() {
+        let id = TetId::from_usize(t);
+        if mt.is_ghost(id) {
+            continue;
+        }
+        for v in mt.tet(id) {
+            if v.idx() >= first && v.idx() < nv {
+                around.push((v.0, t as u32));
+            }
+        }
+    }
+    around.sort_unstable();
+    for run in around.chunk_by(|a, b| a.0 == b.0) {
+        let v = run[0].0;
+        let tets: Vec<TetId> = run.iter().map(|r| TetId(r.1)).collect();
+        let mut frags: Vec<FragmentId> = tets
+            .iter()
+            .flat_map(|&t| [mt.tet_creator(t), mt.tet_destroyer(t)])
+            .collect();
+        frags.sort_unstable();
+        frags.dedup();
+        let at = |f: FragmentId| frags.binary_search(&f).expect("a fragment around");
+        let top = frags
+            .iter()
+            .map(|&f| mt.fragment_level(f))
+            .max()
+            .unwrap_or(0);
+        // needs[i]: the fragments around the vertex that fragment i depends on in the DAG.
+        let mut needs: Vec<Vec<usize>> = vec![Vec::new(); frags.len()];
+        for (i, &g) in frags.iter().enumerate() {
+            let mut seen = std::collections::HashSet::new();
+            let mut stack = vec![g];
+            while let Some(x) = stack.pop() {
+                for a in mt.out_arcs(x).iter() {
+                    let d = mt.arc_destroyer(a as usize);
+                    if mt.fragment_level(d) <= top && seen.insert(d) {
+                        stack.push(d);
+                        if let Ok(j) = frags.binary_search(&d) {
+                            needs[j].push(i);
+                        }
+                    }
+                }
+            }
+        }
+        let mut order: Vec<usize> = (0..frags.len()).collect();
+        order.sort_by_key(|&i| mt.fragment_level(frags[i]));
+        let kinds: Vec<FragmentKind> = frags.iter().map(|&f| mt.fragment_kind(f)).collect();
+        let star_tets: Vec<(usize, usize, [u32; 4])> = tets
+            .iter()
+            .map(|&t| {
+                (
+                    at(mt.tet_creator(t)),
+                    at(mt.tet_destroyer(t)),
+                    mt.tet(t).map(|x| x.0),
+                )
+            })
+            .collect();
+        let mut applied = vec![false; frags.len()];
+        let mut budget = max_sets;
+        if let Some(m) = closed_sets(0, &order, &needs, &kinds, &mut applied, &mut budget, &|a| {
+            let star: Vec<[u32; 4]> = star_tets
+                .iter()
+                .filter(|s| a[s.0] && !a[s.1])
+                .map(|s| s.2)
+                .collect();
+            let fans = boundary_fans(v, &star);
+            (fans > 1).then(|| {
+                format!(
+                    "vertex {v}: {fans} boundary fans in the extraction applying {a:?} of {frags:?}"
+                )
+            })
+        }) {
+            return Some(m);
+        }
+    }
+    None
+}
+
+/// Depth-first over the down-closed sets (see [`pinched_extraction`]): the first message
+/// `check` gives.
+fn closed_sets(
+    k: usize,
+    order: &[usize],
+    needs: &[Vec<usize>],
+    kinds: &[mtcut::mt::FragmentKind],
+    applied: &mut [bool],
+    budget: &mut usize,
+    check: &dyn Fn(&[bool]) -> Option<String>,
+) -> Option<String> {
+    use mtcut::mt::FragmentKind;
+    if *budget == 0 {
+        return None;
+    }
+    let Some(&i) = order.get(k) else {
+        *budget -= 1;
+        return check(applied);
+    };
+    if kinds[i] != FragmentKind::Root {
+        if let Some(m) = closed_sets(k + 1, order, needs, kinds, applied, budget, check) {
+            return Some(m);
+        }
+    }
+    if kinds[i] != FragmentKind::Drain && needs[i].iter().all(|&x| applied[x]) {
+        applied[i] = true;
+        let m = closed_sets(k + 1, order, needs, kinds, applied, budget, check);
+        applied[i] = false;
+        return m;
+    }
+    None
+}
+
+/// How many separate chains the boundary edges of `v`'s link form in `star` (its tets).
+fn boundary_fans(v: u32, star: &[[u32; 4]]) -> usize {
+    const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
+    let mut edges: Vec<(u32, u32)> = Vec::new();
+    for t in star {
+        for f in FACES {
+            let [a, b, c] = f.map(|j| t[j]);
+            let e = match v {
+                _ if a == v => (b, c),
+                _ if b == v => (c, a),
+                _ if c == v => (a, b),
+                _ => continue,
+            };
+            edges.push(e);
+        }
+    }
+    edges.sort_unstable();
+    let boundary: Vec<(u32, u32)> = edges
+        .iter()
+        .filter(|&&(a, b)| edges.binary_search(&(b, a)).is_err())
+        .copied()
+        .collect();
+    let mut ends: Vec<u32> = boundary.iter().flat_map(|&(a, b)| [a, b]).collect();
+    ends.sort_unstable();
+    ends.dedup();
+    let mut parent: Vec<usize> = (0..ends.len()).collect();
+    fn root(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for &(a, b) in &boundary {
+        let (x, y) = (
+            ends.binary_search(&a).unwrap(),
+            ends.binary_search(&b).unwrap(),
+        );
+        let (rx, ry) = (root(&mut parent, x), root(&mut parent, y));
+        parent[rx] = ry;
+    }
+    (0..ends.len())
+        .filter(|&i| root(&mut parent, i) == i)
+        .count()
+}
