@@ -196,13 +196,7 @@ pub fn run(args: Args) -> CliResult {
         |k: usize, mt: &Mt, series: &mut Series| -> Result<bool, Box<dyn std::error::Error>> {
             let e = mt.extract(&options)?;
             if let Err(report) = Components::validate_bodies(&e.mesh) {
-                return Err(invalid_step(
-                    k,
-                    "current mesh",
-                    &report,
-                    series.len(),
-                    &args.output,
-                ));
+                return Err(series.invalid(k, "current mesh", &report));
             }
             if !e.stats.budget_met && !args.json {
                 eprintln!(
@@ -217,11 +211,9 @@ pub fn run(args: Args) -> CliResult {
     write_step(0, scalpel.mt(), &mut series)?;
     let start = Instant::now();
     for (k, &to) in blades.iter().enumerate().skip(1) {
-        let failed =
-            |e: &dyn std::fmt::Display, written: usize| failed_step(k, e, written, &args.output);
-        let mut step = scalpel.step(to).map_err(|e| failed(&e, series.len()))?;
+        let mut step = scalpel.step(to).map_err(|e| series.failed(k, &e))?;
         if k + 1 == blades.len() {
-            let rest = scalpel.catch_up().map_err(|e| failed(&e, series.len()))?;
+            let rest = scalpel.catch_up().map_err(|e| series.failed(k, &e))?;
             step.cuts.extend(rest.cuts);
             step.deferred = rest.deferred;
         }
@@ -229,13 +221,7 @@ pub fn run(args: Args) -> CliResult {
         let report = scalpel.mt().validate();
         let validate_seconds = t_validate.elapsed().as_secs_f64();
         if !report.is_valid() {
-            return Err(invalid_step(
-                k,
-                "model",
-                &report,
-                series.len(),
-                &args.output,
-            ));
+            return Err(series.invalid(k, "model", &report));
         }
         let budget_met = write_step(k, scalpel.mt(), &mut series)?;
         let components = scalpel.mt().nb_components();
@@ -317,8 +303,6 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
     let start = Instant::now();
     let mut steps: Vec<Value> = Vec::new();
     for (k, &to) in blades.iter().enumerate().skip(1) {
-        let failed =
-            |e: &dyn std::fmt::Display, written: usize| failed_step(k, e, written, &args.output);
         let (mut polygons, mut frontier_s, mut tets_cut) = (0, 0.0, 0);
         let mut cut = |polygon: &CutPolygon| -> Result<(), Box<dyn std::error::Error>> {
             let c = live.cut(polygon)?;
@@ -329,19 +313,19 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         };
         incision
             .step(to, &mut cut)
-            .map_err(|e| failed(&e, series.len()))?;
+            .map_err(|e| series.failed(k, &e))?;
         if k + 1 == blades.len() {
             incision
                 .catch_up(&mut cut)
-                .map_err(|e| failed(&e, series.len()))?;
+                .map_err(|e| series.failed(k, &e))?;
         }
         series.write(k, live.mesh())?;
         let r = live
             .process_pending(PendingBudget::All)
-            .map_err(|e| failed(&e, series.len()))?;
+            .map_err(|e| series.failed(k, &e))?;
         // The model refused a cut (and is as it was): stop as a step that broke it would.
         if let Some(e) = r.refused.first() {
-            return Err(failed(e, series.len()).into());
+            return Err(series.failed(k, e).into());
         }
         let t_validate = Instant::now();
         let (model, mesh) = (
@@ -350,16 +334,10 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         );
         let validate_seconds = t_validate.elapsed().as_secs_f64();
         if !model.is_valid() {
-            return Err(invalid_step(k, "model", &model, series.len(), &args.output));
+            return Err(series.invalid(k, "model", &model));
         }
         if let Err(report) = mesh {
-            return Err(invalid_step(
-                k,
-                "current mesh",
-                &report,
-                series.len(),
-                &args.output,
-            ));
+            return Err(series.invalid(k, "current mesh", &report));
         }
         if args.json {
             steps.push(json!({
@@ -428,8 +406,6 @@ fn run_mesh(args: &Args) -> CliResult {
     let mut steps: Vec<Value> = Vec::new();
     let mut components = 1;
     for (k, &to) in blades.iter().enumerate().skip(1) {
-        let failed =
-            |e: &dyn std::fmt::Display, written: usize| failed_step(k, e, written, &args.output);
         // A blade that did not move sweeps nothing: a step without cuts, as for a model.
         let (mut seconds, mut tets_cut) = (0.0, 0);
         let mut cuts: Vec<Value> = Vec::new();
@@ -443,11 +419,11 @@ fn run_mesh(args: &Args) -> CliResult {
         };
         incision
             .step(to, &mut cut)
-            .map_err(|e| failed(&e, series.len()))?;
+            .map_err(|e| series.failed(k, &e))?;
         if k + 1 == blades.len() {
             incision
                 .catch_up(&mut cut)
-                .map_err(|e| failed(&e, series.len()))?;
+                .map_err(|e| series.failed(k, &e))?;
         }
         // A step that cut leaves the crack at the blade.
         let deferred = incision.is_behind();
@@ -455,7 +431,7 @@ fn run_mesh(args: &Args) -> CliResult {
         let report = cutter.mesh().validate();
         let validate_seconds = t_validate.elapsed().as_secs_f64();
         if !report.is_valid() {
-            return Err(invalid_step(k, "mesh", &report, series.len(), &args.output));
+            return Err(series.invalid(k, "mesh", &report));
         }
         series.write(k, cutter.mesh())?;
         if args.json {
@@ -549,30 +525,29 @@ impl Series {
     fn len(&self) -> usize {
         self.entries.len()
     }
-}
 
-/// The error of step `k`: what went wrong, and what the run leaves behind (`written`:
-/// the meshes written, steps 0 to `written - 1`; a time-critical step's own mesh is
-/// written before its queued model cut).
-fn failed_step(k: usize, e: &dyn std::fmt::Display, written: usize, output: &Path) -> String {
-    match written {
-        0 => format!("step {k}: {e}; nothing written, nothing saved"),
-        n => format!(
-            "step {k}: {e}; steps 0-{} written to {}, nothing saved",
-            n - 1,
-            output.display()
-        ),
+    /// The error of step `k`: what went wrong, and what the run leaves behind (the meshes
+    /// written so far; a time-critical step's own mesh is written before its queued model
+    /// cut).
+    fn failed(&self, k: usize, e: &dyn std::fmt::Display) -> String {
+        match self.len() {
+            0 => format!("step {k}: {e}; nothing written, nothing saved"),
+            n => format!(
+                "step {k}: {e}; steps 0-{} written to {}, nothing saved",
+                n - 1,
+                self.dir.display()
+            ),
+        }
     }
-}
 
-/// The error of a step that left an invalid `what` (model or mesh).
-fn invalid_step(
-    k: usize,
-    what: &str,
-    report: &dyn std::fmt::Display,
-    written: usize,
-    output: &Path,
-) -> Box<dyn std::error::Error> {
-    let what = format!("the cut left an invalid {what} ({report})");
-    failed_step(k, &what, written, output).into()
+    /// The error of step `k` that left an invalid `what` (model or mesh).
+    fn invalid(
+        &self,
+        k: usize,
+        what: &str,
+        report: &dyn std::fmt::Display,
+    ) -> Box<dyn std::error::Error> {
+        self.failed(k, &format!("the cut left an invalid {what} ({report})"))
+            .into()
+    }
 }
