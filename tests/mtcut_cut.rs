@@ -84,7 +84,8 @@ fn every_kind(regions: usize) {
 /// `regions` focus regions) checked against every polygon so far after every `every`-th
 /// cut and the last (the full check after each of the 150 cuts runs in
 /// `sequences_full_check`, ignored: `cargo test --test mtcut_cut -- --ignored
-/// sequences_full_check`).
+/// sequences_full_check`); at the end, every extraction's star at every vertex the cuts
+/// made.
 fn sequence(name: &str, seed: u64, every: usize, regions: usize) {
     let mesh = cut_common::mesh(name);
     let volumes = extreme_volumes(&mt_common::built(name).1);
@@ -105,6 +106,12 @@ fn sequence(name: &str, seed: u64, every: usize, regions: usize) {
             &mut Rng(seed + i as u64),
             &case,
         );
+    }
+    // Every extraction, beyond those sampled after the cuts: none is pinched at a vertex the
+    // cuts made (read in the order of the DAG after them, apart from the MT cut's own
+    // check, which reads the order before each cut).
+    if let Some(m) = pinched_extraction(c.mt(), mesh.nb_vertices(), 1 << 14) {
+        panic!("{name} sequence seed {seed}, after 50 cuts: an extraction is pinched: {m}");
     }
 }
 

@@ -254,8 +254,9 @@ pub fn projected_onto(polygon: &CutPolygon, onto: &CutPolygon) -> CutPolygon {
 /// The first vertex from `first` on (the vertices cuts made) that some extraction of `mt`
 /// leaves pinched: its tets there in separate boundary fans. Every extraction's star at a
 /// vertex is read from a down-closed set of the fragments creating or destroying its tets,
-/// in the DAG's order (which the MT cut's own check approximates by the order of the
-/// vertex's tets): all such sets are tried, up to `max_sets` per vertex.
+/// in the order of the DAG after the cuts (the MT cut's own check reads the order of the
+/// DAG before each cut, through the fragment each part was split off): all such sets are
+/// tried, up to `max_sets` per vertex.
 pub fn pinched_extraction(mt: &Mt, first: usize, max_sets: usize) -> Option<String> {
     use mtcut::mesh::{FragmentId, TetId};
     use mtcut::mt::FragmentKind;
