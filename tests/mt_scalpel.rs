@@ -14,8 +14,10 @@ mod mt_common;
 mod mtcut_common;
 
 use blades::{on_arc, shallow_path, tilting, tilting_in};
-use mtcut::cut::{Blade, Components, CutError, CutOptions, Cutter, MtCutter, Scalpel};
-use mtcut::geom::{Aabb, CutPolygon, DVec3, Tolerance, scalpel_sweep};
+use mtcut::cut::{
+    Blade, Components, CutError, CutOptions, Cutter, MtCutter, Scalpel, ScalpelError,
+};
+use mtcut::geom::{Aabb, CutPolygon, DVec3, SWEEP_PLANARITY, Tolerance, scalpel_sweep};
 use mtcut_common::*;
 
 struct Run {
@@ -521,4 +523,73 @@ fn a_blade_turning_in_short_steps_is_refused_before_an_extraction_pinches() {
         }
     }
     panic!("{name}: every step was taken; the refusal this test shows is gone");
+}
+
+/// A scalpel step cutting two triangles (a non-planar sweep) whose second triangle the MT
+/// refuses, after it took the first, is refused whole: the MT is byte for byte what it was
+/// before the step and the blade where it was. The scalpel then cuts on as if the step had
+/// not been tried (the same MT as a cutter that never tried it), valid after. (Fandisk's
+/// blade tilting in 30 steps: its step 6 is such a step.)
+#[test]
+fn a_step_whose_second_triangle_is_refused_changes_nothing() {
+    let name = "fandisk";
+    let mut twin = Run::new(name);
+    let b = twin.bounds();
+    let path: Vec<Blade> = (0..=30).map(|k| tilting_in(&b, k, 30)).collect();
+    let mut scalpel = Scalpel::new(twin.cutter.mt().clone(), path[0]).expect("scalpel");
+    let sweep = |from: Blade, to: Blade| scalpel_sweep(from, to, SWEEP_PLANARITY).expect("sweep");
+    for k in 1..path.len() {
+        let before = scalpel.mt().to_bytes();
+        let e = match scalpel.step(path[k]) {
+            Ok(_) => {
+                for p in sweep(path[k - 1], path[k]) {
+                    twin.cutter.cut(&p).expect("the twin cuts alike");
+                    twin.polygons.push(p);
+                }
+                continue;
+            }
+            Err(e) => e,
+        };
+        assert!(
+            matches!(e, ScalpelError::Cut(CutError::MtInconsistent { .. })),
+            "step {k}: {e}"
+        );
+        // The step refused its second triangle: the first alone is taken.
+        let triangles = sweep(path[k - 1], path[k]);
+        assert_eq!(triangles.len(), 2, "step {k}: not a two-triangle step");
+        let mut probe = MtCutter::new(twin.cutter.mt().clone(), Scalpel::OPTIONS).expect("probe");
+        probe.cut(&triangles[0]).expect("the first triangle alone");
+        assert!(
+            probe.cut(&triangles[1]).is_err(),
+            "step {k}: the second is refused"
+        );
+        assert!(
+            scalpel.mt().to_bytes() == before,
+            "step {k}: the refused step changed the MT"
+        );
+        assert_eq!(scalpel.blade(), path[k - 1], "step {k}: the blade moved");
+        assert_eq!(scalpel.incision().end(), path[k - 1]);
+        // On, from where the blade is, moving as far along x without tilting (a planar
+        // sweep): cut alike by the scalpel and by the twin, which never tried the step.
+        let shift = DVec3::new(path[k][0].x - path[k - 1][0].x, 0.0, 0.0);
+        let to = path[k - 1].map(|p| p + shift);
+        let step = scalpel
+            .step(to)
+            .unwrap_or_else(|e| panic!("step {k}, on: {e}"));
+        assert_eq!(step.cuts.len(), 1);
+        for p in sweep(path[k - 1], to) {
+            twin.cutter.cut(&p).expect("the twin cuts alike");
+            twin.polygons.push(p);
+        }
+        assert!(
+            scalpel.mt().to_bytes() == twin.cutter.mt().to_bytes(),
+            "step {k}: after the refused step, the next one differs from the twin's"
+        );
+        let req = requests(twin.cutter.mt(), 10, 1, &mut Rng(k as u64));
+        if let Err(m) = check_after_cut(&twin.cutter, twin.volumes, &twin.polygons, &req) {
+            panic!("step {k}, after the refused step and one more: {m}");
+        }
+        return;
+    }
+    panic!("no step of the 30-step tilt was refused at its second triangle");
 }

@@ -516,6 +516,30 @@ impl MtCutter {
         })
     }
 
+    /// A copy of the cutter to go back to: the MT and every table a cut reads or changes,
+    /// its scratch left empty (grown again by the next cut). A scalpel step cutting two
+    /// triangles takes one before the first, and goes back to it when the second is
+    /// refused ([`super::Scalpel::step`]), so that a refused step changes nothing.
+    pub(crate) fn snapshot(&self) -> MtCutter {
+        MtCutter {
+            mt: Some(self.mt().clone()),
+            scales: self.scales.clone(),
+            max_scale: self.max_scale,
+            bounds: self.bounds,
+            scratch: CutScratch::new(),
+            options: self.options,
+            cracked: self.cracked.clone(),
+            last_origins: self.last_origins.clone(),
+            fragment_bvh: self.fragment_bvh.clone(),
+            fragment_bvh_slack: self.fragment_bvh_slack,
+            split_off: self.split_off.clone(),
+            links: self.links.clone(),
+            components: self.components,
+            crack: self.crack.clone(),
+            pieces: Pieces::new(0),
+        }
+    }
+
     /// The bounding box of the MT's vertices at rest.
     pub(crate) fn bounds(&self) -> Aabb {
         self.bounds

@@ -88,6 +88,7 @@ pub(crate) fn edit_room(n: usize) -> usize {
 /// The creator and destroyer of every pool tet of an MT, in pool order: what [`Mt::open`]
 /// derives from the arcs, kept by an editor that edits the same MT again
 /// ([`OpenMt::close_keeping_links`], [`Mt::open_with`]) so that opening it costs nothing.
+#[derive(Clone)]
 pub(crate) struct TetLinks {
     creator: Vec<FragmentId>,
     destroyer: Vec<FragmentId>,
