@@ -241,9 +241,11 @@
 //!   steps refused now are 41 on fandisk and 56 on pinion (tests/mt_scalpel.rs), and
 //!   deferring steps to half a median edge, as [`super::Incision`] does, takes them all.
 //!   A step failing the checks is not left in the MT: before closing, every fragment the
-//!   cut changed has its floor and ceiling checked for the same boundary, none holding a
-//!   face twice, and every tet the cut made for a positive orientation (what
-//!   `Mt::validate` checks, read from what the cut changed only: `Changed::check`), and
+//!   cut changed has its floor and ceiling checked for the same boundary (a fragment it
+//!   split, whole, none holding a face twice; one it did not split, from the tets its
+//!   floor and ceiling lost and gained), and every tet the cut made for a positive
+//!   orientation (what `Mt::validate` checks, read from what the cut changed only:
+//!   `Changed::check`), and
 //!   the stars above are examined; a cut failing them is given back, the MT byte for byte
 //!   as before, and refused with [`CutError::MtInconsistent`].
 //! * **Crack tips off the plane are not taken** otherwise (a cut continuing an earlier
@@ -1884,6 +1886,7 @@ impl MtCutter {
         let changed = Changed {
             n_tets,
             nf,
+            nv,
             replaced: &replaced,
             born: &born,
         };
@@ -2500,9 +2503,10 @@ type Replaced = (u32, Tet, FragmentId, FragmentId);
 /// What a cut changed in the opened MT, for checking the MT condition there
 /// ([`Changed::check`]).
 struct Changed<'a> {
-    /// Pool tets and fragments before the cut: those after were appended.
+    /// Pool tets, fragments and vertices before the cut: those after were appended.
     n_tets: usize,
     nf: usize,
+    nv: usize,
     replaced: &'a [Replaced],
     /// The fragment each appended fragment was split off.
     born: &'a [FragmentId],
@@ -2514,12 +2518,30 @@ impl Changed<'_> {
         origin_of(g, self.nf, self.born)
     }
 
+    /// Scratch of [`Delta::check`] for one thread: face tables, and a mark per vertex
+    /// from before the cut.
+    fn check_scratch(&self) -> (FaceCounts, FaceCounts, Vec<bool>) {
+        (
+            FaceCounts::default(),
+            FaceCounts::default(),
+            vec![false; self.nv],
+        )
+    }
+
     /// The first fragment (and what is wrong with it) that, after the cut, holds a tet the
     /// cut made flat or inverted (rounding can put a new point on a face of its tet), or
     /// whose floor and ceiling do not have the same boundary or hold a face twice (what
     /// `Mt::validate` checks of every fragment and tet), read from what the cut changed.
-    /// Each involved collapse fragment, and each one split off it, is checked whole
-    /// (`floor` and `ceiling` list them, as step 3 read them). A root's ceiling and a
+    /// A collapse fragment the cut split is checked whole, with each one split off it
+    /// (`floor` and `ceiling` list them, as step 3 read them). One it changed without
+    /// splitting is checked from what changed ([`Delta::check`]): its floor and ceiling
+    /// had the same boundary before the cut, so they still do when what the cut took out
+    /// of and put into its floor adds up, face by face with orientation, to what it took
+    /// out of and put into its ceiling, and a face held twice is a face of a tet put in.
+    /// Read whole, the fragments along an incision, which every step of a scalpel adds
+    /// tets to, cost more at each step (this check 10–11 ms per step of a blade crossing
+    /// fandisk in 100 steps read whole, 8 ms from what changed); debug builds check each
+    /// such fragment whole as well, and fail when the two disagree. A root's ceiling and a
     /// drain's floor are whole meshes, closed by their ghosts, and were closed before the
     /// cut: they stay closed when the tets the cut made of them (in place and appended)
     /// have the boundary of the tets it replaced, none twice.
@@ -2599,14 +2621,37 @@ impl Changed<'_> {
         let mut split: Vec<FragmentId> = self.born.to_vec();
         split.sort_unstable();
         split.dedup();
-        let check_one = |counts: &mut FaceCounts, i: usize| -> Option<(usize, String)> {
+        // Per collapse fragment changed and not split: the tets its floor and its ceiling
+        // lost and gained.
+        let mut change: HashMap<u32, Delta, FxBuild> = HashMap::default();
+        {
+            let unsplit_collapse = |f: FragmentId| {
+                f.idx() < self.nf
+                    && open.kind[f.idx()] == FragmentKind::Collapse
+                    && split.binary_search(&f).is_err()
+            };
+            let mut note = |f: FragmentId, gained: bool, level: usize, tet: Tet| {
+                if unsplit_collapse(f) {
+                    let d = change.entry(f.0).or_default();
+                    let lists = if gained { &mut d.gained } else { &mut d.lost };
+                    lists[level].push(tet);
+                }
+            };
+            for &(t, old, c, d) in self.replaced {
+                note(d, false, 0, old);
+                note(c, false, 1, old);
+                let t = t as usize;
+                note(open.destroyer()[t], true, 0, open.tets[t]);
+                note(open.creator()[t], true, 1, open.tets[t]);
+            }
+            for t in self.n_tets..open.tets.len() {
+                note(open.destroyer()[t], true, 0, open.tets[t]);
+                note(open.creator()[t], true, 1, open.tets[t]);
+            }
+        }
+        let whole_check = |counts: &mut FaceCounts, i: usize| -> Option<(usize, String)> {
             let f = order[i];
             let was_split = split.binary_search(&f).is_ok();
-            if open.kind[f.idx()] != FragmentKind::Collapse
-                || !(was_split || wrote.binary_search(&f.0).is_ok())
-            {
-                return None;
-            }
             // The fragment and those split off it.
             let mut ids: Vec<FragmentId> = Vec::new();
             if was_split {
@@ -2634,17 +2679,169 @@ impl Changed<'_> {
             }
             None
         };
+        let check_one = |scratch: &mut (FaceCounts, FaceCounts, Vec<bool>),
+                         i: usize|
+         -> Option<(usize, String)> {
+            let f = order[i];
+            if open.kind[f.idx()] != FragmentKind::Collapse
+                || !(split.binary_search(&f).is_ok() || wrote.binary_search(&f.0).is_ok())
+            {
+                return None;
+            }
+            let (counts, old_faces, marks) = scratch;
+            let Some(delta) = change.get(&f.0) else {
+                return whole_check(counts, i);
+            };
+            let found = delta
+                .check(
+                    open,
+                    self.nv,
+                    [&floor[i], &ceiling[i]],
+                    counts,
+                    old_faces,
+                    marks,
+                )
+                .map(|detail| (f.idx(), detail));
+            #[cfg(debug_assertions)]
+            {
+                let whole = whole_check(counts, i);
+                assert_eq!(
+                    found.is_some(),
+                    whole.is_some(),
+                    "fragment {f}: checked from what changed {found:?}, checked whole {whole:?}"
+                );
+            }
+            found
+        };
         // One table of face counts per thread, kept from fragment to fragment.
         let first_bad = if order.len() > 64 {
             let each = (0..order.len())
                 .into_par_iter()
-                .map_init(FaceCounts::default, check_one);
+                .map_init(|| self.check_scratch(), check_one);
             each.find_first(Option::is_some).flatten()
         } else {
-            let mut counts = FaceCounts::default();
-            (0..order.len()).find_map(|i| check_one(&mut counts, i))
+            let mut scratch = self.check_scratch();
+            (0..order.len()).find_map(|i| check_one(&mut scratch, i))
         };
         first_bad.map_or(Ok(()), Err)
+    }
+}
+
+/// The tets a cut took out of and put into the floor (`[0]`) and the ceiling (`[1]`) of a
+/// collapse fragment it changed without splitting it ([`Changed::check`]).
+#[derive(Default)]
+struct Delta {
+    lost: [Vec<Tet>; 2],
+    gained: [Vec<Tet>; 2],
+}
+
+/// A face of a tet, by its sorted vertices, and whether its orientation is the odd order
+/// of them.
+#[inline]
+fn face_key(t: &Tet, f: [usize; 3]) -> ([u32; 3], usize) {
+    let [x, y, z] = f.map(|j| t[j].0);
+    let (x, y, s0) = if x > y { (y, x, 1) } else { (x, y, 0) };
+    let (y, z, s1) = if y > z { (z, y, 1) } else { (y, z, 0) };
+    let (x, y, s2) = if x > y { (y, x, 1) } else { (x, y, 0) };
+    ([x, y, z], (s0 + s1 + s2) & 1)
+}
+
+impl Delta {
+    /// What is wrong, if anything, with the fragment after the cut, given that its floor
+    /// and ceiling had the same boundary before, none holding a face twice, and that
+    /// `lists` are its floor and ceiling now (pool indices). `nv`: the pool's vertices
+    /// before the cut.
+    ///
+    /// * The same boundary: the floor's boundary changed by what it gained less what it
+    ///   lost, as a sum of oriented faces, and so did the ceiling's; they stay equal when
+    ///   the two changes are equal, face by face.
+    /// * No face twice: only a face of a gained tet can be held twice. One with a vertex
+    ///   the cut made is held only by tets the cut wrote (all gained); one of older
+    ///   vertices (or the ghost vertex) is counted over the whole list, whose tets are
+    ///   passed over unless three of their vertices are of such faces (`marks`).
+    fn check(
+        &self,
+        open: &OpenMt,
+        nv: usize,
+        lists: [&[u32]; 2],
+        counts: &mut FaceCounts,
+        old_faces: &mut FaceCounts,
+        marks: &mut [bool],
+    ) -> Option<String> {
+        counts.clear();
+        let sides = [
+            self.gained[0].iter().chain(&self.lost[1]),
+            self.gained[1].iter().chain(&self.lost[0]),
+        ];
+        for (side, tets) in sides.into_iter().enumerate() {
+            for t in tets {
+                for f in TET_FACES {
+                    let (key, odd) = face_key(t, f);
+                    let n = &mut counts.entry(key).or_default()[side][odd];
+                    *n = n.saturating_add(1);
+                }
+            }
+        }
+        let sum = |[even, odd]: [u16; 2]| i32::from(even) - i32::from(odd);
+        let differ = counts.values().filter(|n| sum(n[0]) != sum(n[1])).count();
+        if differ > 0 {
+            return Some(format!(
+                "what the cut changed of its floor and of its ceiling differs at {differ} \
+                 faces: they would not have the same boundary"
+            ));
+        }
+        let older = |v: VertexId| v == GHOST || v.idx() < nv;
+        for (level, what) in ["floor", "ceiling"].into_iter().enumerate() {
+            counts.clear();
+            old_faces.clear();
+            for t in &self.gained[level] {
+                for f in TET_FACES {
+                    let (key, odd) = face_key(t, f);
+                    if f.iter().all(|&j| older(t[j])) {
+                        old_faces.entry(key).or_default();
+                        for &j in &f {
+                            if t[j] != GHOST {
+                                marks[t[j].idx()] = true;
+                            }
+                        }
+                    } else {
+                        let n = &mut counts.entry(key).or_default()[0][odd];
+                        *n = n.saturating_add(1);
+                    }
+                }
+            }
+            if !old_faces.is_empty() {
+                let marked = |v: VertexId| v == GHOST || (v.idx() < nv && marks[v.idx()]);
+                for &t in lists[level] {
+                    let t = &open.tets[t as usize];
+                    if t.iter().filter(|&&v| marked(v)).count() < 3 {
+                        continue;
+                    }
+                    for f in TET_FACES {
+                        let (key, odd) = face_key(t, f);
+                        if let Some(n) = old_faces.get_mut(&key) {
+                            n[0][odd] = n[0][odd].saturating_add(1);
+                        }
+                    }
+                }
+                for key in old_faces.keys() {
+                    for v in key.iter().filter(|&&v| VertexId(v) != GHOST) {
+                        marks[*v as usize] = false;
+                    }
+                }
+            }
+            let twice = counts
+                .values()
+                .chain(old_faces.values())
+                .filter(|n| n[0].iter().any(|&c| c > 1))
+                .count();
+            if twice > 0 {
+                return Some(format!(
+                    "{twice} {what} faces doubled (held twice with one orientation)"
+                ));
+            }
+        }
+        None
     }
 }
 
