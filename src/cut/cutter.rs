@@ -600,6 +600,7 @@ impl Cutter {
                 &self.scales,
                 cand,
                 states,
+                self.tips.is_some(),
                 |t| mesh.tet(t),
             );
         }

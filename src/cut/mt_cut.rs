@@ -855,6 +855,7 @@ impl MtCutter {
             &self.scales,
             &mut cand,
             &mut states,
+            false,
             |t| mt.tet(t),
         );
         if cand.is_empty() {
@@ -3210,8 +3211,10 @@ pub(crate) fn tip_reach(opts: &CutOptions) -> f64 {
 /// level: the MT condition breaks). The decision is taken per cluster of such vertices
 /// joined by edges of candidate tets, so every tet sharing an edge or a face still sees
 /// the same states there, and no edge between two of them is taken for crossed when
-/// their exact sides agree. Tets the new states leave neither straddling nor touching the
-/// cut are dropped from the candidates.
+/// their exact sides agree; with `lips_alike` (a plain mesh), coincident vertices join
+/// one cluster too, so that both lips of a crack get the same states. Tets the new
+/// states leave neither straddling nor touching the cut are dropped from the candidates.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn settle_plane_vertices(
     polygon: &CutPolygon,
     opts: CutOptions,
@@ -3219,6 +3222,7 @@ pub(crate) fn settle_plane_vertices(
     scales: &[f64],
     cand: &mut Vec<TetId>,
     states: &mut Vec<[u8; 4]>,
+    lips_alike: bool,
     tet_of: impl Fn(TetId) -> Tet,
 ) {
     let near = |v: VertexId, s: u8| {
@@ -3251,6 +3255,27 @@ pub(crate) fn settle_plane_vertices(
     index.dedup();
     let slot = |v: VertexId| index.binary_search(&v).expect("a listed vertex") as u32;
     let mut parent: Vec<u32> = (0..index.len() as u32).collect();
+    // On a plain mesh (`lips_alike`), coincident vertices (a crack's vertex and its copy
+    // on the other lip) are one cluster: each lip's star alone can lean to a different
+    // side, and a tip placed in one lip's face and not in the other's leaves lips that a
+    // later cut crossing them splits differently (hanging vertices: a Kuhn-grid sequence,
+    // tests/cut_engine.rs). Not on an MT, nor on a live MT's frontier, which decides as
+    // the MT does: there it made the fragment check refuse incisions taken otherwise (a
+    // T-shaped incision and a deferred scalpel on fandisk, tests/mt_scalpel.rs).
+    if lips_alike {
+        let mut by_position: Vec<u32> = (0..index.len() as u32).collect();
+        let bits = |i: u32| {
+            positions[index[i as usize].idx()]
+                .to_array()
+                .map(f64::to_bits)
+        };
+        by_position.sort_unstable_by_key(|&i| bits(i));
+        for w in by_position.windows(2) {
+            if bits(w[0]) == bits(w[1]) {
+                union(&mut parent, w[0], w[1]);
+            }
+        }
+    }
     let mut sides: Vec<u8> = vec![0; index.len()];
     for ((&t, s), &flag) in cand.iter().zip(states.iter()).zip(&flags) {
         if flag == 0 {
