@@ -193,8 +193,9 @@ fn parallel_slices_split_both_lips_alike() {
 /// lie in both planes, one copy on each lip; each lip's star alone leaned to a different
 /// side of the second plane, so the other lip kept its face whole and the lips differed
 /// there (which `validate` tells apart from a hanging vertex and warns about). Coincident
-/// vertices now take one side: the other lip gets the same tip, and the lips stay alike
-/// for a later cut crossing them (see `random_partial_scalpel_cuts_seed_852`).
+/// vertices on the two lips now decide alike (a plane crossing the crack, not separating
+/// its lips): the other lip gets the same tip, and the lips stay alike for a later cut
+/// crossing them (see `random_partial_scalpel_cuts_seed_852`).
 #[test]
 fn a_crack_ending_against_an_earlier_one_tips_both_lips_alike() {
     let mut cutter = Cutter::new(kuhn_grid(6), CutOptions::SCALPEL).expect("options");
@@ -258,8 +259,8 @@ fn random_partial_scalpel_cuts_through_grid_vertices_keep_the_grid_valid() {
 /// crack (z = 1), coincident vertices on that plane outside C took different sides (each
 /// lip's star leaned its own way), so the fifth cut put a crack tip in one lip's face only,
 /// and the seventh (y = 2.5), crossing both lips there, split them differently: two
-/// hanging vertices, 1.8e-6 of the grid's spacing from the other lip's face. Coincident
-/// vertices now take one side.
+/// hanging vertices, 1.8e-6 of the grid's spacing from the other lip's face. The two lips
+/// now decide alike.
 #[test]
 fn random_partial_scalpel_cuts_seed_852() {
     let (cuts, _) = grid_run(CutOptions::SCALPEL, 852);

@@ -3211,8 +3211,8 @@ pub(crate) fn tip_reach(opts: &CutOptions) -> f64 {
 /// level: the MT condition breaks). The decision is taken per cluster of such vertices
 /// joined by edges of candidate tets, so every tet sharing an edge or a face still sees
 /// the same states there, and no edge between two of them is taken for crossed when
-/// their exact sides agree; with `lips_alike` (a plain mesh), coincident vertices join
-/// one cluster too, so that both lips of a crack get the same states. Tets the new
+/// their exact sides agree; with `lips_alike` (a plain mesh), both lips of a crack that
+/// C's plane crosses get the same states ([`same_decision_on_both_lips`]). Tets the new
 /// states leave neither straddling nor touching the cut are dropped from the candidates.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn settle_plane_vertices(
@@ -3255,27 +3255,6 @@ pub(crate) fn settle_plane_vertices(
     index.dedup();
     let slot = |v: VertexId| index.binary_search(&v).expect("a listed vertex") as u32;
     let mut parent: Vec<u32> = (0..index.len() as u32).collect();
-    // On a plain mesh (`lips_alike`), coincident vertices (a crack's vertex and its copy
-    // on the other lip) are one cluster: each lip's star alone can lean to a different
-    // side, and a tip placed in one lip's face and not in the other's leaves lips that a
-    // later cut crossing them splits differently (hanging vertices: a Kuhn-grid sequence,
-    // tests/cut_engine.rs). Not on an MT, nor on a live MT's frontier, which decides as
-    // the MT does: there it made the fragment check refuse incisions taken otherwise (a
-    // T-shaped incision and a deferred scalpel on fandisk, tests/mt_scalpel.rs).
-    if lips_alike {
-        let mut by_position: Vec<u32> = (0..index.len() as u32).collect();
-        let bits = |i: u32| {
-            positions[index[i as usize].idx()]
-                .to_array()
-                .map(f64::to_bits)
-        };
-        by_position.sort_unstable_by_key(|&i| bits(i));
-        for w in by_position.windows(2) {
-            if bits(w[0]) == bits(w[1]) {
-                union(&mut parent, w[0], w[1]);
-            }
-        }
-    }
     let mut sides: Vec<u8> = vec![0; index.len()];
     for ((&t, s), &flag) in cand.iter().zip(states.iter()).zip(&flags) {
         if flag == 0 {
@@ -3301,6 +3280,9 @@ pub(crate) fn settle_plane_vertices(
         let r = find(&mut parent, i);
         cluster[r as usize] |= sides[i as usize];
     }
+    if lips_alike {
+        same_decision_on_both_lips(&index, positions, &mut parent, &mut cluster);
+    }
     let mut keep = 0;
     for k in 0..cand.len() {
         let (t, mut s) = (cand[k], states[k]);
@@ -3323,6 +3305,52 @@ pub(crate) fn settle_plane_vertices(
     }
     cand.truncate(keep);
     states.truncate(keep);
+}
+
+/// On a plain mesh, the clusters of [`settle_plane_vertices`] holding coincident vertices
+/// (a crack's vertex and its copy on the other lip) are joined, unless each leans wholly
+/// to a side and the sides differ: then C's plane separates the lips (a blade continuing
+/// its own crack), and each copy takes its own lip's side. Otherwise each lip's star
+/// alone can lean to a different side where C's plane crosses the crack: a crack tip is
+/// then placed in one lip's face and not in the other's, and a later cut crossing both
+/// lips there splits them differently (hanging vertices: a Kuhn-grid sequence, tests/
+/// cut_engine.rs). Not on an MT, nor on a live MT's frontier, which decides as the MT
+/// does: there joining them made the fragment check refuse incisions taken otherwise (a
+/// T-shaped incision and a deferred scalpel on fandisk, tests/mt_scalpel.rs).
+fn same_decision_on_both_lips(
+    index: &[VertexId],
+    positions: &[DVec3],
+    parent: &mut [u32],
+    cluster: &mut [u8],
+) {
+    let bits = |i: u32| {
+        positions[index[i as usize].idx()]
+            .to_array()
+            .map(f64::to_bits)
+    };
+    let mut by_position: Vec<u32> = (0..index.len() as u32).collect();
+    by_position.sort_unstable_by_key(|&i| bits(i));
+    let both = (1 << POS) | (1 << NEG);
+    for group in by_position.chunk_by(|&a, &b| bits(a) == bits(b)) {
+        if group.len() < 2 {
+            continue;
+        }
+        let leanings = group.iter().map(|&i| cluster[find(parent, i) as usize]);
+        let (all, mixed) = leanings.fold((0u8, false), |(all, mixed), s| {
+            (all | s, mixed || s == both)
+        });
+        if all == both && !mixed {
+            continue;
+        }
+        for &i in &group[1..] {
+            let (x, y) = (find(parent, group[0]), find(parent, i));
+            if x != y {
+                let (r, o) = (x.min(y), x.max(y));
+                parent[o as usize] = r;
+                cluster[r as usize] |= cluster[o as usize];
+            }
+        }
+    }
 }
 
 /// The side of a tet the tables leave whole: the side of its vertices off the cut
