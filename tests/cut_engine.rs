@@ -284,35 +284,11 @@ fn grid_stress(options: CutOptions) {
 /// One seeded run of up to 10 cuts (see `grid_stress`), the grid valid after each: cuts
 /// made and refused (a refusal ends the run).
 fn grid_run(options: CutOptions, seed: u64) -> (usize, usize) {
-    let n = 6;
-    let grid = kuhn_grid(n);
-    let normals = [
-        DVec3::X,
-        DVec3::Y,
-        DVec3::Z,
-        DVec3::new(1.0, 1.0, 0.0),
-        DVec3::new(0.0, 1.0, 1.0),
-        DVec3::new(1.0, 0.0, 1.0),
-        DVec3::new(1.0, -1.0, 0.0),
-        DVec3::new(1.0, 1.0, 1.0),
-    ]
-    .map(DVec3::normalize);
     let (mut cuts, mut refused) = (0, 0);
     let mut rng = Rng(seed * 7919 + 13);
-    let mut cutter = Cutter::new(grid, options).expect("options");
+    let mut cutter = Cutter::new(kuhn_grid(6), options).expect("options");
     for k in 0..10 {
-        let normal = normals[rng.below(normals.len())];
-        let mut at = || rng.below(n + 1) as f64;
-        let mut p0 = DVec3::new(at(), at(), at());
-        if rng.unit() < 0.3 {
-            p0 += DVec3::splat(0.5);
-        }
-        let u = normal.any_orthonormal_vector();
-        let w = normal.cross(u);
-        let (a0, a1) = (-rng.range(0.0, 8.0), rng.range(0.0, 8.0));
-        let (b0, b1) = (-rng.range(0.0, 8.0), rng.range(0.0, 8.0));
-        let corners = [(a0, b0), (a1, b0), (a1, b1), (a0, b1)].map(|(a, b)| p0 + u * a + w * b);
-        let Ok(polygon) = CutPolygon::new(&corners) else {
+        let Some(polygon) = grid_partial_polygon(&mut rng, 6) else {
             continue;
         };
         match cutter.cut(&polygon) {

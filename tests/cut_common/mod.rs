@@ -539,6 +539,37 @@ pub fn kuhn_grid(n: usize) -> TetMesh {
         .0
 }
 
+/// A seeded partial cut of a Kuhn grid of `n` cells per side (see [`kuhn_grid`]) for the
+/// degenerate stress runs: a rectangle through a grid vertex (or, one time in three or so,
+/// the point half a cell beyond it along the diagonal), its normal along an axis or a
+/// diagonal, reaching 0–8 cells from that point each way; `None` for a degenerate
+/// rectangle (the random draws still advance).
+pub fn grid_partial_polygon(rng: &mut Rng, n: usize) -> Option<CutPolygon> {
+    let normals = [
+        DVec3::X,
+        DVec3::Y,
+        DVec3::Z,
+        DVec3::new(1.0, 1.0, 0.0),
+        DVec3::new(0.0, 1.0, 1.0),
+        DVec3::new(1.0, 0.0, 1.0),
+        DVec3::new(1.0, -1.0, 0.0),
+        DVec3::new(1.0, 1.0, 1.0),
+    ]
+    .map(DVec3::normalize);
+    let normal = normals[rng.below(normals.len())];
+    let mut at = || rng.below(n + 1) as f64;
+    let mut p0 = DVec3::new(at(), at(), at());
+    if rng.unit() < 0.3 {
+        p0 += DVec3::splat(0.5);
+    }
+    let u = normal.any_orthonormal_vector();
+    let w = normal.cross(u);
+    let (a0, a1) = (-rng.range(0.0, 8.0), rng.range(0.0, 8.0));
+    let (b0, b1) = (-rng.range(0.0, 8.0), rng.range(0.0, 8.0));
+    let corners = [(a0, b0), (a1, b0), (a1, b1), (a0, b1)].map(|(a, b)| p0 + u * a + w * b);
+    CutPolygon::new(&corners).ok()
+}
+
 /// A square of half-size `r` centred at `c`, in the plane of unit normal `normal`.
 pub fn square(c: DVec3, normal: DVec3, r: f64) -> CutPolygon {
     let u = normal.any_orthonormal_vector();
