@@ -452,6 +452,16 @@ fn check_manifold(
     }
 }
 
+/// Whether two vertices hold one point up to the rounding of the points a cut makes (each
+/// coordinate within 4 ulps): a vertex there is at a face's corner, not inside the face.
+/// One point of a crack made on both lips of an earlier crack, from faces of the two lips
+/// triangulated differently (an MT's levels), can round 1 ulp apart on each (a Kuhn-grid
+/// run, tests/mtcut_cut.rs), as two coincident copies would not.
+fn same_point(a: DVec3, b: DVec3) -> bool {
+    let ulps = 4.0 * f64::EPSILON;
+    (a - b).abs().cmple(a.abs().max(b.abs()) * ulps).all()
+}
+
 /// A boundary vertex lying strictly inside a boundary face or edge it does not belong to is
 /// a T-junction: the mesh is not conforming there. Exact predicates decide; a k-d tree over
 /// the boundary vertices finds those in each face's box (in parallel over faces) in time
@@ -494,9 +504,7 @@ fn check_hanging(
                 // exact path; the projected-triangle test (a point in the triangle
                 // projects into its projection) rejects them before.
                 if !f.contains(&v)
-                    && p != a
-                    && p != b
-                    && p != q
+                    && ![a, b, q].iter().any(|&c| same_point(p, c))
                     && projected.contains(p)
                     && orient3d(a, b, q, p) == Sign::Zero
                 {
