@@ -3313,10 +3313,10 @@ pub(crate) fn settle_plane_vertices(
 /// its own crack), and each copy takes its own lip's side. Otherwise each lip's star
 /// alone can lean to a different side where C's plane crosses the crack: a crack tip is
 /// then placed in one lip's face and not in the other's, and a later cut crossing both
-/// lips there splits them differently (hanging vertices: a Kuhn-grid sequence, tests/
-/// cut_engine.rs). Not on an MT, nor on a live MT's frontier, which decides as the MT
-/// does: there joining them made the fragment check refuse incisions taken otherwise (a
-/// T-shaped incision and a deferred scalpel on fandisk, tests/mt_scalpel.rs).
+/// lips there splits them differently (hanging vertices: a Kuhn-grid sequence,
+/// tests/cut_engine.rs). Not on an MT, nor on a live MT's frontier, which decides as the
+/// MT does: there joining them made the fragment check refuse incisions taken otherwise
+/// (a T-shaped incision and a deferred scalpel on fandisk, tests/mt_scalpel.rs).
 fn same_decision_on_both_lips(
     index: &[VertexId],
     positions: &[DVec3],
