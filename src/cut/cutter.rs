@@ -600,6 +600,8 @@ impl Cutter {
                 &self.scales,
                 cand,
                 states,
+                // Lips decided alike on a plain mesh only: an MT's frontier (the cutter
+                // without crack tips) decides as the MT does.
                 self.tips.is_some(),
                 |t| mesh.tet(t),
             );
