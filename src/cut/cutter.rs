@@ -90,6 +90,10 @@ pub struct Cutter {
     /// takes them (`StateClassifier::with_crack_vertices`), kept up to date with the
     /// vertices this cutter's cuts add. `None` for a plain mesh.
     crack: Option<Vec<bool>>,
+    /// Whether the next cut takes the `crack` vertices on its plane outside it as `OUT`
+    /// (false only during a [`cut_glued`](Self::cut_glued) that does not: see
+    /// [`super::mt_cut::continues_a_crack_plane`]).
+    crack_out: bool,
     /// During [`cut_glued`](Self::cut_glued): per vertex, whether it counts as lying in the
     /// polygon's plane, and the farthest of those from it.
     glued: Vec<bool>,
@@ -325,6 +329,7 @@ impl Cutter {
             build_time,
             tips: Some(CrackTips::default()),
             crack: None,
+            crack_out: true,
             glued: Vec::new(),
             glue_reach: None,
         };
@@ -501,8 +506,23 @@ impl Cutter {
     /// wherever they are ([`StateClassifier::with_glued`](super::classify::StateClassifier::with_glued)): the
     /// frontier-first step of a blade continuing, in its plane, a crack that the body's
     /// motion has moved off it ([`super::live`]), decided as the MT cut decides it
-    /// ([`MtCutter::cut_deformed`](super::MtCutter::cut_deformed)).
+    /// ([`MtCutter::cut_deformed`](super::MtCutter::cut_deformed)); earlier cracks'
+    /// vertices on the plane outside the polygon taken as `OUT` only when `crack_out`
+    /// (as the MT cut takes them: [`super::mt_cut::continues_a_crack_plane`]).
     pub(crate) fn cut_glued(
+        &mut self,
+        polygon: &CutPolygon,
+        glued: &[VertexId],
+        crack_out: bool,
+    ) -> Result<CutResult, CutError> {
+        self.crack_out = crack_out;
+        let result = self.cut_glued_as_set(polygon, glued);
+        self.crack_out = true;
+        result
+    }
+
+    /// [`cut_glued`](Self::cut_glued) with `crack_out` set.
+    fn cut_glued_as_set(
         &mut self,
         polygon: &CutPolygon,
         glued: &[VertexId],
@@ -581,7 +601,7 @@ impl Cutter {
                     .as_ref()
                     .filter(|_| opts.continue_cracks)
                     .map(|t| (t, super::mt_cut::tip_reach(&opts))),
-                crack: self.crack.as_deref(),
+                crack: self.crack.as_deref().filter(|_| self.crack_out),
                 glued: self.glue_reach.map(|r| (&self.glued[..], r)),
             },
             found,

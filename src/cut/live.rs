@@ -119,7 +119,7 @@
 
 use super::classify::{OriginPositions, VertexOrigin, origin_positions};
 use super::cutter::Cutter;
-use super::mt_cut::{MtCutStats, MtCutter};
+use super::mt_cut::{MtCutStats, MtCutter, continues_a_crack_plane};
 use super::options::{CutError, CutOptions};
 use super::report::CutStats;
 use crate::geom::{Aabb, CutPolygon, DVec3, PLANE_SNAP, PolygonError, snap_to_plane};
@@ -424,7 +424,21 @@ impl LiveMt {
             Some(p) if self.deformed && p.current_epoch != self.epoch => &p.current[..],
             _ => &[],
         };
-        let r = self.current.cut_glued(polygon, glued)?;
+        // Earlier cracks' vertices on the plane outside the polygon are `OUT` as the MT
+        // cut will take them, at rest after the cuts queued before this one.
+        let crack_out = self.deformed || {
+            let mut planes = self.cutter.mt().info().cuts.made.planes.clone();
+            for p in self
+                .pending
+                .iter()
+                .filter(|p| matches!(p.frame, Frame::Rest))
+            {
+                let plane = p.polygon.plane();
+                planes.push([plane.normal, plane.points[0]]);
+            }
+            continues_a_crack_plane(polygon, &planes)
+        };
+        let r = self.current.cut_glued(polygon, glued, crack_out)?;
         let added = if self.at_rest {
             &self.current.mesh().positions()[n..]
         } else {

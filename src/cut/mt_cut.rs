@@ -46,7 +46,9 @@
 //!    the cut, so the earlier tips join the crack and are duplicated once surrounded by
 //!    it, instead of being met by new tips a rounding error away. A vertex of an earlier
 //!    crack ([`MtCutter::crack_vertices`]) on the plane up to rounding farther outside C
-//!    is on neither side ([`OUT`]): no edge at it is crossed and no face with two
+//!    is on neither side ([`OUT`]) when the cut lies in the plane of an earlier crack
+//!    (`continues_a_crack_plane`; elsewhere such vertices lie on the line where another
+//!    crack meets this plane and keep their sides): no edge at it is crossed and no face with two
 //!    vertices on the plane holds a face point, so the two lips and the tips they share
 //!    see the same faces alike; with their exact sides, rounding noise, a lip
 //!    face next to a snapped vertex got a face point where the other lip's face, at the
@@ -141,12 +143,19 @@
 //!   resolution was once left pinched by a fold's fallback cut, [`super::live`], which also
 //!   pinched the coarsest mesh before it was analysed; that polygon, close to an earlier
 //!   cut's plane, is now cut in that plane, and valid.)
-//! * A crack reaching a vertex of an earlier crack in another plane, on this cut's plane
-//!   just outside C (such a vertex is not cut), can divide that vertex's tets on one lip
-//!   and pinch the finest or the coarsest mesh there. The cut is then refused
-//!   ([`CutError::MtInconsistent`], before the MT changes); the plain-mesh engine, given
-//!   the same cuts, ends that crack short of the vertex. Found by random partial cuts
-//!   through the vertices of a Kuhn grid (tests/mtcut_cut.rs).
+//! * A crack continued in its plane reaching a vertex of an earlier crack in another plane,
+//!   on this cut's plane just outside C (`OUT`: such a vertex is not cut), can divide that
+//!   vertex's tets on one lip and pinch the finest or the coarsest mesh there. The cut is
+//!   then refused ([`CutError::MtInconsistent`], before the MT changes); the plain-mesh
+//!   engine, given the same cuts, ends that crack short of the vertex. Found by random
+//!   partial cuts through the vertices of a Kuhn grid (tests/mtcut_cut.rs).
+//! * A cut whose points lie nearly on one line where it meets an earlier crack's tips
+//!   (a Kuhn grid's cracks, whose tips lie a face-point margin off their planes) can put
+//!   one of them inside a coarse crack face: a hanging vertex in the finest or the
+//!   coarsest mesh, which the fragments' floors and ceilings do not show. The cut looks
+//!   for one among the faces it wrote on those two meshes and the vertices it made
+//!   (`Changed::hanging`) and is refused if it finds one. The meshes between them are not
+//!   examined (nor does `Mt::validate` examine them).
 //! * Closing the MT after a cut (the pool merged back into arcs after a read-only check
 //!   of its order, levels and arc lists derived again, the vertex ids of every tet
 //!   checked) costs time in proportion to the pool and the DAG, not to the cut: the DAG
@@ -263,10 +272,10 @@ use super::split::{Children, split_tet};
 use super::stamps::Stamps;
 use super::tables::{NEG, ON, OUT, POS, Side};
 use super::unglue::{StarEntry, plan_copies};
-use crate::geom::{Aabb, CutPolygon, DVec3, PLANE_SNAP, Sign, snap_to_plane};
+use crate::geom::{Aabb, CutPolygon, DVec3, PLANE_SNAP, Sign, lies_in_plane, snap_to_plane};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::{TET_EDGES, TET_FACES, flip_face, oriented_face};
-use crate::mesh::{FragmentId, Tet, TetId, VertexId};
+use crate::mesh::{FragmentId, Tet, TetId, VertexId, boundary_hits};
 use crate::mt::history::{Made, MadeBy};
 use crate::mt::{FragmentBvh, FragmentKind, GHOST, KnownDag, Mt, OpenMt, TetLinks};
 use rayon::prelude::*;
@@ -783,8 +792,10 @@ impl MtCutter {
             made.tips(t.cut).for_each(|v| turning_tips.insert(v));
         }
         let mut classifier = StateClassifier::new(polygon, opts.snap, &bounds, self.max_scale)
-            .with_contour_band(contour_band(&opts))
-            .with_crack_vertices(&self.crack);
+            .with_contour_band(contour_band(&opts));
+        if deformed.is_some() || continues_a_crack_plane(polygon, &made.planes) {
+            classifier = classifier.with_crack_vertices(&self.crack);
+        }
         if !turning.is_empty() {
             classifier = classifier.with_crack_tips(&turning_tips, tip_reach(&opts));
         }
@@ -1327,8 +1338,8 @@ impl MtCutter {
         // another plane, the vertex has tets on both sides, and this crack's faces can
         // divide its tets on one lip in two: that mesh is pinched there, two fans of
         // boundary faces meeting at one point, which the fragments' floors and ceilings do
-        // not show (measured: random partial cuts through the vertices of a Kuhn grid, the
-        // plane x − y = −2 reaching a vertex of the earlier crack x + z = 5). At each such
+        // not show (measured: random partial cuts through the vertices of a Kuhn grid,
+        // tests/mtcut_cut.rs, a cut in the plane x + y = 9 a second time). At each such
         // vertex the finest and the coarsest meshes are checked (the whole star, found
         // through the fragment hierarchy), and such a cut refused before the MT changes.
         {
@@ -1898,6 +1909,7 @@ impl MtCutter {
         let problem = changed
             .check(&open, &order, &floor, &ceiling)
             .err()
+            .or_else(|| changed.hanging(&open))
             .or_else(|| {
                 let mut on_surface: Vec<VertexId> =
                     snapped.iter().chain(copy_of.values()).copied().collect();
@@ -2729,6 +2741,62 @@ impl Changed<'_> {
     }
 }
 
+impl Changed<'_> {
+    /// The first vertex this cut made that would hang in the finest or the coarsest mesh
+    /// (lie strictly inside a boundary face it is not a corner of, other than a face of
+    /// the other lip of a crack), as `Mt::validate` finds it, named with the fragment
+    /// holding that face. The fragments' floors and ceilings can match face by face and
+    /// still hold such a T-junction: on a Kuhn grid, where the tips of an earlier crack
+    /// lie a face-point margin off a grid plane, a later cut in another plane made points
+    /// nearly collinear on its crack, one inside a coarse crack face by 2e-8. Only the
+    /// faces the cut wrote are read, with the vertices it made: every boundary face at
+    /// such a vertex was written by the cut, so a vertex on the other lip is told apart.
+    fn hanging(&self, open: &OpenMt) -> Option<(usize, String)> {
+        let written = self
+            .replaced
+            .iter()
+            .map(|r| r.0 as usize)
+            .chain(self.n_tets..open.tets.len());
+        for name in ["finest", "coarsest"] {
+            let mut faces: Vec<[VertexId; 3]> = Vec::new();
+            let mut owners: Vec<FragmentId> = Vec::new();
+            let mut points: Vec<VertexId> = Vec::new();
+            for t in written.clone() {
+                let tet = open.tets[t];
+                if tet[3] != GHOST {
+                    continue;
+                }
+                let (link, kind) = match name {
+                    "finest" => (open.creator()[t], FragmentKind::Root),
+                    _ => (open.destroyer()[t], FragmentKind::Drain),
+                };
+                if open.kind[self.origin(link).idx()] != kind {
+                    continue;
+                }
+                let face = [tet[0], tet[1], tet[2]];
+                faces.push(face);
+                owners.push(link);
+                points.extend(face.into_iter().filter(|v| v.idx() >= self.nv));
+            }
+            points.sort_unstable();
+            points.dedup();
+            let hits = boundary_hits(&open.positions, &faces, points);
+            if let Some(&(v, fi)) = hits.hanging.iter().min() {
+                let f = faces[fi as usize];
+                return Some((
+                    owners[fi as usize].idx(),
+                    format!(
+                        "its {name} mesh would have a hanging vertex: vertex {} lies inside \
+                         boundary face ({}, {}, {})",
+                        v.0, f[0].0, f[1].0, f[2].0
+                    ),
+                ));
+            }
+        }
+        None
+    }
+}
+
 /// The tets a cut took out of and put into the floor (`[0]`) and the ceiling (`[1]`) of a
 /// collapse fragment it changed without splitting it ([`Changed::check`]).
 #[derive(Default)]
@@ -3173,6 +3241,23 @@ impl Reach {
 /// 0.01, gives a 2% band and a 1.5% reach) and far below the default snap (0.2), so that cuts with
 /// the default margin (0.5, face points mid-segment) reach barely past C's contour.
 const CRACK_REACH_CAP: f64 = 0.05;
+
+/// Whether a cut by `polygon` at rest takes the vertices of earlier cracks lying on its
+/// plane outside it as [`OUT`] (`StateClassifier::with_crack_vertices`):
+/// when it lies in the plane of an earlier crack made at rest (`planes`, the MT's record),
+/// or when no such plane is recorded (an MT saved before planes were: its cracks' planes
+/// are unknown). `OUT` is for a crack continued in its own plane, whose lips and tips all
+/// lie on the new plane and whose exact sides there would be rounding noise. A crack in
+/// another plane meets the new plane along a line only, and its vertices on that line
+/// (a Kuhn grid puts some there exactly) keep their sides like any vertex: taken as
+/// `OUT`, a vertex of it outside the polygon drew the new crack along a whole coarse face
+/// up to the earlier crack (the face's `ON` corner reaching two `OUT` ones), without
+/// copies there on any level, and the cut was refused (faces doubled); 29 of 300 seeded
+/// Kuhn-grid runs were refused at their second cut, and 8 of 300 took all ten cuts,
+/// 152 since. Deformed cuts keep `OUT` as before (their cracks' planes are not recorded).
+pub(crate) fn continues_a_crack_plane(polygon: &CutPolygon, planes: &[[DVec3; 2]]) -> bool {
+    planes.is_empty() || lies_in_plane(polygon, planes.iter().map(|&[n, p]| (n, p)))
+}
 
 /// The contour band ([`StateClassifier::with_contour_band`]) of a cut that continues cracks: every
 /// MT cut, and a plain-mesh cut with [`continue_cracks`](CutOptions::continue_cracks). Twice the

@@ -211,9 +211,11 @@ pub enum CutError {
     FlatChild { tet: usize, case: &'static str },
     #[error(
         "the cut would leave fragment {fragment} of the MT inconsistent ({detail}): refused, \
-         the MT is as it was before the cut. Known cause: a cut beginning where an earlier \
+         the MT is as it was before the cut. Known causes: a cut beginning where an earlier \
          crack ends, at an angle to it (a turning or tilting blade), which MT cuts support \
-         only where every level agrees on where that crack ended"
+         only where every level agrees on where that crack ended; a cut crossing earlier \
+         cracks where their vertices and edges lie exactly on its plane (a structured grid \
+         cut along its planes)"
     )]
     MtInconsistent { fragment: usize, detail: String },
 }

@@ -20,7 +20,7 @@ pub use attributes::{Attribute, Attributes};
 pub use boundary::Boundary;
 pub use ids::{FragmentId, Tet, TetId, VertexId};
 pub use quality::{QualitySummary, TetQuality, tet_quality};
-pub(crate) use validate::Numbering;
+pub(crate) use validate::{Numbering, boundary_hits};
 pub use validate::{Severity, ValidationReport, Violation, ViolationKind};
 
 use crate::geom::{

@@ -463,29 +463,77 @@ fn same_point(a: DVec3, b: DVec3) -> bool {
 }
 
 /// A boundary vertex lying strictly inside a boundary face or edge it does not belong to is
-/// a T-junction: the mesh is not conforming there. Exact predicates decide; a k-d tree over
-/// the boundary vertices finds those in each face's box (in parallel over faces) in time
-/// that follows the vertices found, however unevenly they are spread — a cut's crack
-/// packs many small faces into a small region, where a uniform grid's cells overflow.
+/// a T-junction: the mesh is not conforming there (see [`boundary_hits`]).
 fn check_hanging(
     pos: &[DVec3],
     boundary: &[[VertexId; 3]],
     num: Numbering,
     r: &mut ValidationReport,
 ) {
-    if boundary.is_empty() {
-        return;
-    }
     let mut on_boundary = vec![false; pos.len()];
     for v in boundary.iter().flatten() {
         on_boundary[v.idx()] = true;
     }
-    let tree = PointTree::new(
-        (0..pos.len())
-            .filter(|&v| on_boundary[v])
-            .map(|v| (pos[v], VertexId::from_usize(v)))
-            .collect(),
-    );
+    let points = (0..pos.len())
+        .filter(|&v| on_boundary[v])
+        .map(VertexId::from_usize)
+        .collect();
+    let BoundaryHits {
+        mut lips,
+        mut hanging,
+    } = boundary_hits(pos, boundary, points);
+    lips.sort_unstable();
+    lips.dedup_by_key(|h| h.0);
+    for (v, fi) in lips {
+        r.add(ViolationKind::LipsApart, || {
+            format!(
+                "vertex {} lies on face {} of the other lip",
+                num.vertex(v.0),
+                num.vertex_list(&boundary[fi as usize])
+            )
+        });
+    }
+    // One report per vertex, naming the first face it lies on.
+    hanging.sort_unstable();
+    hanging.dedup_by_key(|h| h.0);
+    for (v, fi) in hanging {
+        r.add(ViolationKind::HangingVertex, || {
+            format!(
+                "vertex {} lies on boundary face {}",
+                num.vertex(v.0),
+                num.vertex_list(&boundary[fi as usize])
+            )
+        });
+    }
+}
+
+/// The vertices of [`boundary_hits`]'s points lying strictly inside a boundary face they
+/// are not part of, each with the index of such a face: on the other lip of a crack, or
+/// hanging (a T-junction).
+pub(crate) struct BoundaryHits {
+    pub lips: Vec<(VertexId, u32)>,
+    pub hanging: Vec<(VertexId, u32)>,
+}
+
+/// Which of `points` (boundary vertices) lie strictly inside a face of `boundary` that they
+/// are not part of. Exact predicates decide; a k-d tree over the points finds those in each
+/// face's box (in parallel over faces) in time that follows the vertices found, however
+/// unevenly they are spread — a cut's crack packs many small faces into a small region,
+/// where a uniform grid's cells overflow. [`TetMesh::validate`] asks it of a whole mesh's
+/// boundary; the MT cut of the faces it wrote on its finest and coarsest meshes and the
+/// vertices it made (whose boundary faces are all among those).
+pub(crate) fn boundary_hits(
+    pos: &[DVec3],
+    boundary: &[[VertexId; 3]],
+    points: Vec<VertexId>,
+) -> BoundaryHits {
+    if boundary.is_empty() || points.is_empty() {
+        return BoundaryHits {
+            lips: Vec::new(),
+            hanging: Vec::new(),
+        };
+    }
+    let tree = PointTree::new(points.into_iter().map(|v| (pos[v.idx()], v)).collect());
     // (vertex, face) for every vertex lying on a face it is not part of.
     let hits: Vec<(VertexId, u32)> = boundary
         .par_iter()
@@ -548,29 +596,7 @@ fn check_hanging(
     for (h, apart) in hits.into_iter().zip(apart) {
         if apart { lips.push(h) } else { hanging.push(h) }
     }
-    lips.sort_unstable();
-    lips.dedup_by_key(|h| h.0);
-    for (v, fi) in lips {
-        r.add(ViolationKind::LipsApart, || {
-            format!(
-                "vertex {} lies on face {} of the other lip",
-                num.vertex(v.0),
-                num.vertex_list(&boundary[fi as usize])
-            )
-        });
-    }
-    // One report per vertex, naming the first face it lies on.
-    hanging.sort_unstable();
-    hanging.dedup_by_key(|h| h.0);
-    for (v, fi) in hanging {
-        r.add(ViolationKind::HangingVertex, || {
-            format!(
-                "vertex {} lies on boundary face {}",
-                num.vertex(v.0),
-                num.vertex_list(&boundary[fi as usize])
-            )
-        });
-    }
+    BoundaryHits { lips, hanging }
 }
 
 /// A static k-d tree over points: halved at the median of the longest side of each
