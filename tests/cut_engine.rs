@@ -267,6 +267,22 @@ fn random_partial_scalpel_cuts_seed_852() {
     assert!(cuts >= 7, "{cuts} cuts made");
 }
 
+/// Seed 2443, with the scalpel's options: the tenth cut (y = 0.5) crosses the meeting of
+/// the first crack (x = y, whose contour crossed a grid edge in its plane, each face around
+/// it getting its own tip a face-point margin inside) with the eighth (x + z = 5); cut
+/// points of those cracks on different edges lie there within 2e-6 of one another and of
+/// the tenth plane, closer than the scalpel's snapping, and the two lips' edges were cut at
+/// points a few 1e-6 apart: two hanging vertices, the cut returned as a success. A plain
+/// cut continuing cracks now looks for a vertex it makes hanging in a face it makes and,
+/// finding one, cuts again with the snapping raised a hundredfold (as for a flat child:
+/// 1e-6 to 1e-4 of the local edge length), which snaps those points onto the tenth plane;
+/// every cut leaves the grid valid.
+#[test]
+fn random_partial_scalpel_cuts_seed_2443() {
+    let (cuts, refused) = grid_run(CutOptions::SCALPEL, 2443);
+    assert_eq!((cuts, refused), (10, 0));
+}
+
 fn grid_stress(options: CutOptions) {
     const RUNS: u64 = 200;
     let (mut cuts, mut refused) = (0, 0);
@@ -293,7 +309,7 @@ fn grid_run(options: CutOptions, seed: u64) -> (usize, usize) {
         };
         match cutter.cut(&polygon) {
             Ok(_) => cuts += 1,
-            Err(CutError::FlatChild { .. }) => {
+            Err(CutError::FlatChild { .. } | CutError::HangingVertex { .. }) => {
                 refused += 1;
                 break;
             }

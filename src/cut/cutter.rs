@@ -494,7 +494,9 @@ impl Cutter {
         let mut opts = self.options;
         loop {
             match self.cut_with(polygon, opts) {
-                Err(CutError::FlatChild { .. }) if opts.snap.relative < RETRY_SNAP => {
+                Err(CutError::FlatChild { .. } | CutError::HangingVertex { .. })
+                    if opts.snap.relative < RETRY_SNAP =>
+                {
                     opts.snap.relative = (opts.snap.relative * 100.0).min(RETRY_SNAP);
                 }
                 r => return r,
@@ -902,6 +904,39 @@ impl Cutter {
                 case: children[child_of[k] as usize].case.name(),
             });
         }
+        // A crack continued across earlier ones (the scalpel's options on a plain mesh)
+        // can meet their tips and cut points where they lie within 1e-6 of one another
+        // and of its plane (a Kuhn grid's cracks, their tips a face-point margin off their
+        // planes), and cut two lips' edges at points that far apart: a vertex it made
+        // hanging in a face it made. Looked for here, before anything changes (an MT's
+        // frontier is checked by the MT cut instead, which decides as it does).
+        if opts.continue_cracks && self.tips.is_some() && opts.scheme == Scheme::Lut {
+            let tet_at = |k: usize, c: usize| match child_of[k] {
+                NONE => tets[k],
+                i => children[i as usize].tets[c],
+            };
+            if let Some(v) = hanging_made(
+                n_vertices,
+                |v| match v.idx().checked_sub(n_vertices) {
+                    None => self.mesh.position(v),
+                    Some(i) => match new_positions.get(i) {
+                        Some(&p) => p,
+                        None => self.mesh.position(copies.groups[i - new_positions.len()].0),
+                    },
+                },
+                (0..tets.len()).flat_map(|k| {
+                    let n = match child_of[k] {
+                        NONE => 1,
+                        i => children[i as usize].len,
+                    };
+                    (0..n).map(move |c| (TetId((32 * k + c) as u32), tet_at(k, c)))
+                }),
+                &copies.groups,
+                n_vertices + new_positions.len(),
+            ) {
+                return Err(CutError::HangingVertex { vertex: v.idx() });
+            }
+        }
         times.split += t.elapsed().as_secs_f64();
 
         let t = Instant::now();
@@ -1212,6 +1247,65 @@ pub(crate) fn check_positions(positions: &[DVec3], expected: usize) -> Result<()
         Some((vertex, value)) => Err(CutError::PositionOutOfRange { vertex, value }),
         None => Ok(()),
     }
+}
+
+/// The first vertex a cut would make (id `first_new` or above: cut and face points, then
+/// copies from `first_copy`) lying strictly inside a boundary face the cut makes that it is
+/// not a corner of, other than a face of the other lip of a crack (as `TetMesh::validate`
+/// finds a hanging vertex). `slots` lists the tets after the cut where it changes the mesh
+/// (by virtual slot: the candidate's index × 32 + the child's), before `groups` gives the
+/// copies of its snapped vertices (`groups[i]`: the vertex and the slots taking copy
+/// `first_copy + i`); `position` places old and new vertices. A face holding a new vertex
+/// is held only by such tets, so the faces among them held once are boundary faces; those
+/// of old vertices only are passed over (their other tet is unchanged).
+fn hanging_made(
+    first_new: usize,
+    position: impl Fn(VertexId) -> DVec3,
+    slots: impl Iterator<Item = (TetId, Tet)>,
+    groups: &[(VertexId, Vec<TetId>)],
+    first_copy: usize,
+) -> Option<VertexId> {
+    let mut after: HashMap<TetId, Tet, FxBuild> = slots.collect();
+    for (i, (v, members)) in groups.iter().enumerate() {
+        let copy = VertexId::from_usize(first_copy + i);
+        for m in members {
+            if let Some(t) = after.get_mut(m) {
+                for x in t.iter_mut().filter(|x| **x == *v) {
+                    *x = copy;
+                }
+            }
+        }
+    }
+    let mut held: HashMap<[VertexId; 3], u32, FxBuild> = HashMap::default();
+    for t in after.values() {
+        for f in crate::mesh::tables::TET_FACES {
+            let face = f.map(|j| t[j]);
+            if face.iter().any(|v| v.idx() >= first_new) {
+                let mut key = face;
+                key.sort_unstable();
+                *held.entry(key).or_default() += 1;
+            }
+        }
+    }
+    // Local ids: the vertices of the boundary faces.
+    let mut local: HashMap<VertexId, VertexId, FxBuild> = HashMap::default();
+    let mut ids: Vec<VertexId> = Vec::new();
+    let mut faces: Vec<[VertexId; 3]> = Vec::new();
+    for (face, _) in held.iter().filter(|(_, n)| **n == 1) {
+        faces.push(face.map(|v| {
+            *local.entry(v).or_insert_with(|| {
+                ids.push(v);
+                VertexId::from_usize(ids.len() - 1)
+            })
+        }));
+    }
+    let pos: Vec<DVec3> = ids.iter().map(|&v| position(v)).collect();
+    let points = (0..ids.len())
+        .filter(|&i| ids[i].idx() >= first_new)
+        .map(VertexId::from_usize)
+        .collect();
+    let hits = crate::mesh::boundary_hits(&pos, &faces, points);
+    hits.hanging.iter().map(|&(v, _)| ids[v.idx()]).min()
 }
 
 /// Appends the vertices of `origins` to `mesh` (their `positions`, interpolated point

@@ -210,6 +210,12 @@ pub enum CutError {
     )]
     FlatChild { tet: usize, case: &'static str },
     #[error(
+        "the cut would leave vertex {vertex} it makes hanging in a crack face (its points \
+         on earlier cracks' lips round a millionth apart), even with the snapping tolerance \
+         raised to 0.2"
+    )]
+    HangingVertex { vertex: usize },
+    #[error(
         "the cut would leave fragment {fragment} of the MT inconsistent ({detail}): refused, \
          the MT is as it was before the cut. Known causes: a cut beginning where an earlier \
          crack ends, at an angle to it (a turning or tilting blade), which MT cuts support \
