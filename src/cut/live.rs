@@ -427,16 +427,13 @@ impl LiveMt {
         // Earlier cracks' vertices on the plane outside the polygon are `OUT` as the MT
         // cut will take them, at rest after the cuts queued before this one.
         let crack_out = self.deformed || {
-            let mut planes = self.cutter.mt().info().cuts.made.planes.clone();
-            for p in self
+            let recorded = self.cutter.mt().info().cuts.made.planes.iter();
+            let queued = self
                 .pending
                 .iter()
                 .filter(|p| matches!(p.frame, Frame::Rest))
-            {
-                let plane = p.polygon.plane();
-                planes.push([plane.normal, plane.points[0]]);
-            }
-            continues_a_crack_plane(polygon, &planes)
+                .map(|p| (p.polygon.normal(), p.polygon.plane().points[0]));
+            continues_a_crack_plane(polygon, recorded.map(|&[n, p]| (n, p)).chain(queued))
         };
         let r = self.current.cut_glued(polygon, glued, crack_out)?;
         let added = if self.at_rest {

@@ -793,7 +793,9 @@ impl MtCutter {
         }
         let mut classifier = StateClassifier::new(polygon, opts.snap, &bounds, self.max_scale)
             .with_contour_band(contour_band(&opts));
-        if deformed.is_some() || continues_a_crack_plane(polygon, &made.planes) {
+        if deformed.is_some()
+            || continues_a_crack_plane(polygon, made.planes.iter().map(|&[n, p]| (n, p)))
+        {
             classifier = classifier.with_crack_vertices(&self.crack);
         }
         if !turning.is_empty() {
@@ -2757,7 +2759,10 @@ impl Changed<'_> {
             .iter()
             .map(|r| r.0 as usize)
             .chain(self.n_tets..open.tets.len());
-        for name in ["finest", "coarsest"] {
+        for (name, kind) in [
+            ("finest", FragmentKind::Root),
+            ("coarsest", FragmentKind::Drain),
+        ] {
             let mut faces: Vec<[VertexId; 3]> = Vec::new();
             let mut owners: Vec<FragmentId> = Vec::new();
             let mut points: Vec<VertexId> = Vec::new();
@@ -2766,9 +2771,9 @@ impl Changed<'_> {
                 if tet[3] != GHOST {
                     continue;
                 }
-                let (link, kind) = match name {
-                    "finest" => (open.creator()[t], FragmentKind::Root),
-                    _ => (open.destroyer()[t], FragmentKind::Drain),
+                let link = match kind {
+                    FragmentKind::Root => open.creator()[t],
+                    _ => open.destroyer()[t],
                 };
                 if open.kind[self.origin(link).idx()] != kind {
                     continue;
@@ -3244,7 +3249,8 @@ const CRACK_REACH_CAP: f64 = 0.05;
 
 /// Whether a cut by `polygon` at rest takes the vertices of earlier cracks lying on its
 /// plane outside it as [`OUT`] (`StateClassifier::with_crack_vertices`):
-/// when it lies in the plane of an earlier crack made at rest (`planes`, the MT's record),
+/// when it lies in the plane of an earlier crack made at rest (`planes`, each a unit
+/// normal and a point: the MT's record),
 /// or when no such plane is recorded (an MT saved before planes were: its cracks' planes
 /// are unknown). `OUT` is for a crack continued in its own plane, whose lips and tips all
 /// lie on the new plane and whose exact sides there would be rounding noise. A crack in
@@ -3255,8 +3261,12 @@ const CRACK_REACH_CAP: f64 = 0.05;
 /// copies there on any level, and the cut was refused (faces doubled); 29 of 300 seeded
 /// Kuhn-grid runs were refused at their second cut, and 8 of 300 took all ten cuts,
 /// 152 since. Deformed cuts keep `OUT` as before (their cracks' planes are not recorded).
-pub(crate) fn continues_a_crack_plane(polygon: &CutPolygon, planes: &[[DVec3; 2]]) -> bool {
-    planes.is_empty() || lies_in_plane(polygon, planes.iter().map(|&[n, p]| (n, p)))
+pub(crate) fn continues_a_crack_plane(
+    polygon: &CutPolygon,
+    planes: impl IntoIterator<Item = (DVec3, DVec3)>,
+) -> bool {
+    let mut planes = planes.into_iter().peekable();
+    planes.peek().is_none() || lies_in_plane(polygon, planes)
 }
 
 /// The contour band ([`StateClassifier::with_contour_band`]) of a cut that continues cracks: every
