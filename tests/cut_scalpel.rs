@@ -13,7 +13,7 @@
 mod blades;
 mod cut_common;
 
-use blades::{shallow_path, tilting, vertical};
+use blades::{random_path, shallow_path, tilting, vertical};
 use cut_common::{MESHES, mesh};
 use mtcut::cut::{
     Blade, Components, CutOptions, Cutter, Incision, MIN_FACE_POINT_MARGIN, ScalpelError,
@@ -337,75 +337,13 @@ fn with_the_default_snap_a_step_that_would_make_a_flat_tet_is_refused() {
     );
 }
 
-/// A random scalpel path through `b`: a blade whose centre starts outside the box and
-/// moves towards it along a heading that turns by a random rate, the blade's direction
-/// (mostly along z, leaning to one side by a random angle that drifts) and its half-length
-/// (spanning the body's depth, or stopping inside it) random; steps of a random length
-/// between 0.2% and 5% of the diagonal.
-fn random_path(b: &Aabb, rng: &mut cut_common::Rng) -> Vec<Blade> {
-    use std::f64::consts::PI;
-    let (c, d) = (b.center(), b.max - b.min);
-    let diag = b.diagonal();
-    let heading0 = rng.range(0.0, 2.0 * PI);
-    let start = c - DVec3::new(heading0.cos(), heading0.sin(), 0.0) * (0.6 * diag);
-    let turn = rng.range(-8.0, 8.0).to_radians();
-    let step = diag * rng.range(0.002, 0.05);
-    let half = if rng.unit() < 0.5 {
-        0.7 * d.z
-    } else {
-        0.3 * d.z
-    };
-    // The lean drifts slowly enough for the blade's ends to move forwards at every step
-    // (a sweep folding over itself is refused).
-    let (lean0, drift) = (rng.range(-0.3, 0.3), rng.range(-0.3, 0.3) * step / half);
-    let side = rng.range(0.0, 2.0 * PI);
-    let steps = ((1.3 * diag / step) as usize).clamp(8, 120);
-    let (mut p, mut heading, mut lean) = (start, heading0, lean0);
-    (0..=steps)
-        .map(|_| {
-            // Leaning towards a fixed side (not turning with the heading, which would swing
-            // the blade's ends about its middle: a sweep folding over itself).
-            let axis = DVec3::new(lean.sin() * side.cos(), lean.sin() * side.sin(), lean.cos());
-            let blade = [
-                p + axis * half,
-                p - axis * half + DVec3::new(0.0, 0.0, 0.2 * d.z),
-            ];
-            p += DVec3::new(heading.cos(), heading.sin(), 0.0) * step;
-            heading += turn;
-            lean = (lean + drift).clamp(-0.5, 0.5);
-            blade
-        })
-        .collect()
-}
-
-/// The blade positions from `a` to `b` in as few equal steps (1, 2, 4, ...) as keep every
-/// sweep from folding over itself (which the sweep refuses: "use smaller steps").
-fn unfolded(a: Blade, b: Blade) -> Vec<Blade> {
-    let lerp = |t: f64| [a[0].lerp(b[0], t), a[1].lerp(b[1], t)];
-    for n in [1usize, 2, 4, 8, 16] {
-        let path: Vec<Blade> = (0..=n).map(|k| lerp(k as f64 / n as f64)).collect();
-        if path
-            .windows(2)
-            .all(|w| scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).is_ok())
-        {
-            return path;
-        }
-    }
-    panic!("a blade step that folds however finely it is divided: {a:?} -> {b:?}");
-}
-
 /// Random paths (`paths` per mesh, seeded): every step valid and volume kept, and no cut
 /// refused.
 fn random_paths(paths: u64) {
     for name in MESHES {
         for seed in 0..paths {
             let mut run = Run::new(name, CutOptions::SCALPEL);
-            let mut rng = cut_common::Rng(0xB1ADE + seed);
-            let coarse = random_path(&run.bounds(), &mut rng);
-            let mut path = vec![coarse[0]];
-            for w in coarse.windows(2) {
-                path.extend(unfolded(w[0], w[1]).into_iter().skip(1));
-            }
+            let path = random_path(&run.bounds(), seed);
             run.sweep(&format!("random path {seed}"), &path);
         }
     }

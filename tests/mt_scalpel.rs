@@ -13,7 +13,7 @@ mod blades;
 mod mt_common;
 mod mtcut_common;
 
-use blades::{on_arc, shallow_path, tilting, tilting_in};
+use blades::{on_arc, random_path, shallow_path, tilting, tilting_in};
 use mtcut::cut::{
     Blade, Components, CutError, CutOptions, Cutter, MtCutter, Scalpel, ScalpelError,
 };
@@ -303,6 +303,50 @@ fn a_cut_breaking_the_mt_is_refused_and_given_back() {
     }
     // When MT cuts learn to take these steps, this test needs another cut they refuse.
     assert!(refused > 0, "no cut of the steep tilting path was refused");
+}
+
+/// The random scalpel paths of tests/cut_scalpel.rs (turning, leaning, through the body or
+/// stopping inside it), which the plain-mesh engine takes whole, moved through each shared
+/// mesh's MT by a [`Scalpel`]: a step the MT refuses is skipped (the MT as it was; the next
+/// step cuts from where the crack ends), the MT valid after every step, and no step should
+/// be refused. Measured (25 paths per mesh): see the ignore reason and the README's
+/// "Scalpel on the MT: random paths".
+#[test]
+#[ignore = "KNOWN FAILURE (issue 7 open): the MT refuses steps of 9, 9 and 8 of the 25 \
+            random paths on fandisk, pinion and liver (steps continuing the last at an \
+            angle: turning blades, most of all those ending inside the body, and leaning \
+            ones, whose sweeps are two triangles)"]
+fn random_scalpel_paths_through_the_mt() {
+    let mut refused: Vec<(&str, u64, usize)> = Vec::new();
+    for name in mt_common::MESHES {
+        for seed in 0..25 {
+            let mt = mt_common::built(name).1.clone();
+            let path = random_path(&Aabb::from_points(mt.positions()), seed);
+            let mut scalpel = Scalpel::new(mt, path[0]).expect("scalpel");
+            for (k, &to) in path.iter().enumerate().skip(1) {
+                match scalpel.step(to) {
+                    Ok(_) => {}
+                    Err(ScalpelError::Cut(CutError::MtInconsistent { .. })) => {
+                        refused.push((name, seed, k))
+                    }
+                    Err(e) => panic!("{name}, path {seed}, step {k}: {e}"),
+                }
+                let report = scalpel.mt().validate();
+                assert!(
+                    report.is_valid(),
+                    "{name}, path {seed}, step {k}: {report:?}"
+                );
+            }
+        }
+    }
+    let mut paths: Vec<(&str, u64)> = refused.iter().map(|&(n, s, _)| (n, s)).collect();
+    paths.dedup();
+    assert!(
+        refused.is_empty(),
+        "{} steps refused on {} paths (mesh, path): {paths:?}",
+        refused.len(),
+        paths.len()
+    );
 }
 
 /// A shallow incision along x, then a second one starting outside the body and ending on
