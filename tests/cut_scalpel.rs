@@ -343,7 +343,8 @@ fn random_paths(paths: u64) {
     for name in MESHES {
         for seed in 0..paths {
             let mut run = Run::new(name, CutOptions::SCALPEL);
-            let path = random_path(&run.bounds(), seed);
+            let mut rng = cut_common::Rng(0xB1ADE + seed);
+            let path = random_path(&run.bounds(), || rng.unit());
             run.sweep(&format!("random path {seed}"), &path);
         }
     }

@@ -10,6 +10,7 @@
 //! polygon applied so far crosses.
 
 mod blades;
+mod cut_common;
 mod mt_common;
 mod mtcut_common;
 
@@ -321,7 +322,8 @@ fn random_scalpel_paths_through_the_mt() {
     for name in mt_common::MESHES {
         for seed in 0..25 {
             let mt = mt_common::built(name).1.clone();
-            let path = random_path(&Aabb::from_points(mt.positions()), seed);
+            let mut rng = cut_common::Rng(0xB1ADE + seed);
+            let path = random_path(&Aabb::from_points(mt.positions()), || rng.unit());
             let mut scalpel = Scalpel::new(mt, path[0]).expect("scalpel");
             for (k, &to) in path.iter().enumerate().skip(1) {
                 match scalpel.step(to) {

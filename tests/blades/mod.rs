@@ -68,46 +68,30 @@ pub fn tilting_in(b: &Aabb, k: usize, steps: usize) -> Blade {
     ]
 }
 
-/// The seeded generator of [`random_path`] (SplitMix64, as the cut tests' own).
-struct PathRng(u64);
-
-impl PathRng {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        (((z ^ (z >> 31)) >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.unit()
-    }
-}
-
-/// Random scalpel path `seed` through `b`: a blade whose centre starts outside the box and
-/// moves towards it along a heading that turns by a random rate, the blade's direction
-/// (mostly along z, leaning to one side by a random angle that drifts) and its half-length
-/// (spanning the body's depth, or stopping inside it) random; steps of a random length
-/// between 0.2% and 5% of the diagonal, each divided into as few equal steps as keep its
-/// sweep from folding over itself.
-pub fn random_path(b: &Aabb, seed: u64) -> Vec<Blade> {
+/// A random scalpel path through `b`, drawn by `unit` (uniform in (0, 1)): a blade whose
+/// centre starts outside the box and moves towards it along a heading that turns by a
+/// random rate, the blade's direction (mostly along z, leaning to one side by a random
+/// angle that drifts) and its half-length (spanning the body's depth, or stopping inside
+/// it) random; steps of a random length between 0.2% and 5% of the diagonal, each divided
+/// into as few equal steps as keep its sweep from folding over itself.
+pub fn random_path(b: &Aabb, mut unit: impl FnMut() -> f64) -> Vec<Blade> {
     use std::f64::consts::PI;
-    let rng = &mut PathRng(0xB1ADE + seed);
+    let mut range = |a: f64, b: f64| a + (b - a) * unit();
     let (c, d) = (b.center(), b.max - b.min);
     let diag = b.diagonal();
-    let heading0 = rng.range(0.0, 2.0 * PI);
+    let heading0 = range(0.0, 2.0 * PI);
     let start = c - DVec3::new(heading0.cos(), heading0.sin(), 0.0) * (0.6 * diag);
-    let turn = rng.range(-8.0, 8.0).to_radians();
-    let step = diag * rng.range(0.002, 0.05);
-    let half = if rng.unit() < 0.5 {
+    let turn = range(-8.0, 8.0).to_radians();
+    let step = diag * range(0.002, 0.05);
+    let half = if range(0.0, 1.0) < 0.5 {
         0.7 * d.z
     } else {
         0.3 * d.z
     };
     // The lean drifts slowly enough for the blade's ends to move forwards at every step
     // (a sweep folding over itself is refused).
-    let (lean0, drift) = (rng.range(-0.3, 0.3), rng.range(-0.3, 0.3) * step / half);
-    let side = rng.range(0.0, 2.0 * PI);
+    let (lean0, drift) = (range(-0.3, 0.3), range(-0.3, 0.3) * step / half);
+    let side = range(0.0, 2.0 * PI);
     let steps = ((1.3 * diag / step) as usize).clamp(8, 120);
     let (mut p, mut heading, mut lean) = (start, heading0, lean0);
     let coarse: Vec<Blade> = (0..=steps)
