@@ -236,13 +236,14 @@
 //!   side its tets keep (every 20-step tilt cut, but on fandisk the bodies' tets then held
 //!   each other's vertices on coarser levels, and the MT stayed one component). The
 //!   smallest case found: a triangle ending on a vertical line through the body, then a
-//!   triangle continuing it from that line at any angle from 0.5° to 30° (continuing it in
-//!   its plane is taken), is refused at 1 of 12 lines tried on pinion and 2 on liver, none on fandisk.
-//!   On liver's first (4°): near the first triangle's corner a coarse tet holds tips of
-//!   two of its contour edges, so one of its faces is made of three tips (in the crack's
-//!   plane, inside the first triangle, never opened); it joins tets inside and outside
-//!   the wedge, the tip stays whole there, and the cracks open all around the edge between
-//!   two tips on the line: boundary faces doubled in a fragment's ceiling. Not joining
+//!   triangle continuing it from that line at any angle from 0.5° to 30° (continuing it
+//!   in its plane is taken), is refused at 1 of 12 lines tried on pinion and 2 on liver,
+//!   none on fandisk. On liver's first (4°): near the first triangle's corner a coarse
+//!   tet holds tips of two of its contour edges, so one of its faces is made of three
+//!   tips (in the crack's plane, inside the first triangle, never opened); it joins tets
+//!   inside and outside the wedge, the tip stays whole there, and the cracks open all
+//!   around the edge between two tips on the line: boundary faces doubled in a
+//!   fragment's ceiling. Not joining
 //!   tets through faces made only of the earlier cut's vertices gave that tip a copy, and
 //!   the fragment's floor and ceiling then differed at 8 faces around it; with ghosts
 //!   also on such faces once the tets on their two sides decide apart, one of liver's two
