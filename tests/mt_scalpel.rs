@@ -19,6 +19,7 @@ use mtcut::cut::{
     Blade, Components, CutError, CutOptions, Cutter, MtCutter, Scalpel, ScalpelError,
 };
 use mtcut::geom::{Aabb, CutPolygon, DVec3, SWEEP_PLANARITY, Tolerance, scalpel_sweep};
+use mtcut::mt::{BuildOptions, Mt};
 use mtcut_common::*;
 
 struct Run {
@@ -131,7 +132,7 @@ fn a_scalpel_resumed_from_saved_models_cuts_as_one_cutter() {
         let path = blades::turning_by_8(&b, 15);
         for (k, w) in path.windows(2).enumerate() {
             for polygon in scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).expect("sweep") {
-                let loaded = mtcut::mt::Mt::from_bytes(&saved).expect("load");
+                let loaded = Mt::from_bytes(&saved).expect("load");
                 let mut fresh = MtCutter::new(loaded, MtCutter::DEFAULT_OPTIONS).expect("options");
                 fresh
                     .cut(&polygon)
@@ -318,10 +319,38 @@ fn a_cut_breaking_the_mt_is_refused_and_given_back() {
             angle: turning blades, most of all those ending inside the body, and leaning \
             ones, whose sweeps are two triangles)"]
 fn random_scalpel_paths_through_the_mt() {
+    refused_on_random_paths(|name| mt_common::built(name).1.clone());
+}
+
+/// The same paths through an MT of one level, each shared mesh alone (built with a target
+/// of as many tets as it has: no collapse): the MT cut then works on the very mesh the
+/// plain-mesh engine takes the paths whole on, so what it refuses comes from how it
+/// decides a turning tip's copy (one copy per vertex, given by position to the tets
+/// outside the wedge between the two cracks: `mtcut::cut::mt_cut`'s `TurnTips`), not
+/// from levels that disagree.
+#[test]
+#[ignore = "KNOWN FAILURE (issue 7 open): on one level the MT still refuses steps of 4, 2 \
+            and 4 of the 25 paths on fandisk, pinion and liver (first refusals: a turning \
+            tip's copy given to two fans of tets, and flat children the plain engine \
+            avoids with a snap beyond the MT's 1e-4)"]
+fn random_scalpel_paths_through_an_mt_of_one_level() {
+    refused_on_random_paths(|name| {
+        let mesh = &mt_common::built(name).0;
+        let options = BuildOptions::DEFAULT.with_target_tets(Some(mesh.nb_tets()));
+        let (mt, _) = Mt::build(mesh, &options).expect("build");
+        assert_eq!(mt.nb_fragments(), 2, "{name}: a collapse was made");
+        mt
+    });
+}
+
+/// Moves a [`Scalpel`] along 25 random paths through each shared mesh's `mt_of(name)`,
+/// the MT valid after every step; fails naming the steps refused.
+fn refused_on_random_paths(mt_of: impl Fn(&str) -> Mt) {
     let mut refused: Vec<(&str, u64, usize)> = Vec::new();
     for name in mt_common::MESHES {
+        let model = mt_of(name);
         for seed in 0..25 {
-            let mt = mt_common::built(name).1.clone();
+            let mt = model.clone();
             let mut rng = cut_common::Rng(0xB1ADE + seed);
             let path = random_path(&Aabb::from_points(mt.positions()), || rng.unit());
             let mut scalpel = Scalpel::new(mt, path[0]).expect("scalpel");

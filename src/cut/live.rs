@@ -99,7 +99,7 @@
 //!   steps refused (the MT's checks: a coarsest mesh pinched, faces doubled).
 //! * At rest too, a step continuing the last one at an angle is refused where the direct
 //!   MT cut refuses it ([`super::scalpel`]'s limits): on random scalpel paths (100 per
-//!   shared mesh, each cut drained before the next), 423, 293 and 425 of 6,111 steps on
+//!   shared mesh, each cut drained before the next), 423, 288 and 420 of 6,111 steps on
 //!   fandisk, pinion and liver were dropped, the model and the current mesh valid, each
 //!   such step's incision missing from both (the frontier's cut undone by the
 //!   extraction).

@@ -133,7 +133,9 @@
 //!   exactly on the plane (degenerate cuts) are still on the cut, consistently. The price
 //!   of so small a `snap` is quality: cut points can lie arbitrarily close to an edge's ends, so
 //!   children can be thin (every orientation is still exact, and checked by
-//!   `Mt::validate`).
+//!   `Mt::validate`). A cut that would make a flat child or leave a vertex hanging is
+//!   planned once more with `snap` a hundred times larger, up to [`MAX_MT_SNAP`]
+//!   ([`MtCutter::cut`]), where the plain-mesh engine goes on to 0.2.
 //! * A vertex exactly on the cut whose tets in the finest or in the coarsest mesh do not
 //!   form one group per side (the engine's *pinched* vertices and boundary saddles) is left
 //!   unsnapped on every level, as the engine does on a plain mesh. The meshes between are
@@ -354,6 +356,10 @@ pub struct MtCutStats {
     pub moved_to_plane: bool,
     /// Independent MTs after the cut.
     pub components: usize,
+    /// The snapping tolerance the cut was planned with: the options', or up to
+    /// [`MAX_MT_SNAP`] when it would have made a flat tet or a hanging vertex (see
+    /// [`MtCutter::cut`]).
+    pub snap: f64,
     pub time: MtCutTimes,
 }
 
@@ -379,6 +385,7 @@ impl MtCutStats {
             "vertices_unsnapped": self.vertices_unsnapped,
             "moved_to_plane": self.moved_to_plane,
             "components": self.components,
+            "snap": self.snap,
             "time": {
                 "query": self.time.query,
                 "split": self.time.split,
@@ -638,7 +645,15 @@ impl MtCutter {
     }
 
     /// Cuts every level of the MT with `polygon` and updates the DAG (see the
-    /// [module docs](self)). The cut is planned in full before the MT changes.
+    /// [module docs](self)). The cut is planned in full before the MT changes. One that
+    /// would make a tet flat once its points are rounded, or leave a vertex it makes
+    /// hanging in a crack face, is planned again with `snap` a hundred times larger, up to
+    /// [`MAX_MT_SNAP`] (`stats.snap` says which was used), as [`super::Cutter::cut`]
+    /// retries on a plain mesh, and refused when that still fails. On an MT of one level
+    /// (a shared mesh alone) moved along the random scalpel paths of tests/mt_scalpel.rs,
+    /// this took one more path of 25 per mesh on fandisk and none more elsewhere; the
+    /// plain engine's further retries (up to 0.2) would have taken one more on liver, but
+    /// snapping that far bends the cut differently on each level (see the limits).
     pub fn cut(&mut self, polygon: &CutPolygon) -> Result<MtCutStats, CutError> {
         self.cut_with(polygon, None, None)
     }
@@ -701,7 +716,25 @@ impl MtCutter {
         let history = self.mt_mut().cut_history_mut();
         let mut made = std::mem::take(&mut history.made);
         self.scales = std::mem::take(&mut history.scales);
-        let result = self.cut_recording(polygon, key, deformed, &mut made);
+        // A cut refused for a flat child or a hanging vertex is planned again with `snap`
+        // a hundred times larger, up to `MAX_MT_SNAP`, as the plain-mesh engine retries
+        // (`Cutter::cut`, which goes on up to 0.2): the vertex the plane passed too close
+        // to is then on the cut. The MT is as it was after a refusal; the time reported
+        // is the attempts' together.
+        let start = Instant::now();
+        let mut opts = self.options;
+        let mut result = loop {
+            let mut snap_may_help = false;
+            let r = self.cut_recording(polygon, key, deformed, &mut made, opts, &mut snap_may_help);
+            if r.is_err() && snap_may_help && opts.snap.relative < MAX_MT_SNAP {
+                opts.snap.relative = (opts.snap.relative * 100.0).min(MAX_MT_SNAP);
+                continue;
+            }
+            break r;
+        };
+        if let Ok(stats) = &mut result {
+            stats.time.total = start.elapsed().as_secs_f64();
+        }
         let scales = std::mem::take(&mut self.scales);
         let history = self.mt_mut().cut_history_mut();
         history.made = made;
@@ -764,10 +797,14 @@ impl MtCutter {
         key: Option<&dyn Fn(FragmentId) -> u64>,
         deformed: Option<(&[DVec3], &[VertexId])>,
         made: &mut Made,
+        opts: CutOptions,
+        snap_may_help: &mut bool,
     ) -> Result<MtCutStats, CutError> {
         let start = Instant::now();
-        let opts = self.options;
-        let mut stats = MtCutStats::default();
+        let mut stats = MtCutStats {
+            snap: opts.snap.relative,
+            ..MtCutStats::default()
+        };
         let mt = self
             .mt
             .as_ref()
@@ -947,8 +984,13 @@ impl MtCutter {
         // Tips of an earlier crack at an angle to this cut, on the line where it ended
         // (see `TurnTips`): their two groups are the two sides of both cracks together,
         // not the sides of this cut, so they are not unsnapped for having several groups
-        // on a side.
-        let turn = TurnTips::new(&tets, &states, &turning, made, 1e-6 * self.max_scale);
+        // on a side. A pinched one (a group whose link is not a disk: no copy can
+        // separate it) is unsnapped like any other, as the plain-mesh engine does: on
+        // an MT of one level (the finest mesh alone) kept as a turning tip, it made the
+        // first difference from the plain engine's result on the same random scalpel
+        // paths and left the tip's copy pinched a few steps later (25 paths per shared
+        // mesh: 6, 6 and 6 met a refused step, 5, 2 and 4 with this rule).
+        let mut turn = TurnTips::new(&tets, &states, &turning, made, 1e-6 * self.max_scale);
         let coarsest: Vec<bool> = cand
             .iter()
             .map(|&t| mt.fragment_kind(mt.tet_destroyer(t)) == FragmentKind::Drain)
@@ -957,6 +999,7 @@ impl MtCutter {
         let mut on_cut: Vec<VertexId> = Vec::new();
         loop {
             let mut bad: Vec<VertexId> = Vec::new();
+            let mut pinched: Vec<VertexId> = Vec::new();
             let mut snapped: Vec<VertexId> = Vec::new();
             for level in [&finest, &coarsest] {
                 star.clear();
@@ -1000,7 +1043,7 @@ impl MtCutter {
                 on_cut.sort_unstable();
                 on_cut.dedup();
                 let plan = plan_copies(&on_cut, &star, |v| on_cut.binary_search(&v).unwrap_or(0));
-                bad.extend(plan.pinched);
+                pinched.extend(plan.pinched);
                 for w in plan.groups.windows(2) {
                     if w[0].0 == w[1].0 {
                         bad.push(w[0].0);
@@ -1009,6 +1052,7 @@ impl MtCutter {
                 snapped.extend_from_slice(&on_cut);
             }
             bad.retain(|&v| !turn.has(v));
+            bad.append(&mut pinched);
             bad.sort_unstable();
             bad.dedup();
             if bad.is_empty() {
@@ -1026,6 +1070,10 @@ impl MtCutter {
                 classes[k] = class;
                 child_of[k] = split_into(&session, k, &classes[k], &mut children);
             }
+        }
+        if stats.vertices_unsnapped > 0 {
+            // An unsnapped turning tip is off this cut: not taken onto its crack.
+            turn = TurnTips::new(&tets, &states, &turning, made, 1e-6 * self.max_scale);
         }
         let first_new = VertexId::from_usize(nv);
         let origins = session.allocate(first_new);
@@ -1922,10 +1970,10 @@ impl MtCutter {
         // Every extraction's star at the vertices this cut put on its surface (the
         // finest and coarsest meshes were analysed when deciding their copies; the meshes
         // between can still be pinched there: `pinched_between`).
-        let problem = changed
-            .check(&open, &order, &floor, &ceiling)
-            .err()
-            .or_else(|| changed.hanging(&open))
+        let problem = changed.flat(&open).or_else(|| changed.hanging(&open));
+        *snap_may_help = problem.is_some();
+        let problem = problem
+            .or_else(|| changed.check(&open, &order, &floor, &ceiling).err())
             .or_else(|| {
                 let mut on_surface: Vec<VertexId> =
                     snapped.iter().chain(copy_of.values()).copied().collect();
@@ -2558,10 +2606,27 @@ impl Changed<'_> {
         )
     }
 
-    /// The first fragment (and what is wrong with it) that, after the cut, holds a tet the
-    /// cut made flat or inverted (rounding can put a new point on a face of its tet), or
-    /// whose floor and ceiling do not have the same boundary or hold a face twice (what
-    /// `Mt::validate` checks of every fragment and tet), read from what the cut changed.
+    /// The fragment (and what is wrong) that, after the cut, holds the first tet the cut
+    /// made flat or inverted (rounding can put a new point on a face of its tet).
+    fn flat(&self, open: &OpenMt) -> Option<(usize, String)> {
+        let made = self.replaced.iter().map(|r| r.0 as usize);
+        made.chain(self.n_tets..open.tets.len()).find_map(|t| {
+            let tet = open.tets[t];
+            if tet[3] == GHOST {
+                return None;
+            }
+            let [a, b, c, d] = tet.map(|v| open.positions[v.idx()]);
+            let flat = crate::geom::orient3d(a, b, c, d) != crate::geom::Sign::Positive;
+            flat.then(|| {
+                let detail = format!("a tet it made, {tet:?}, is flat or inverted");
+                (open.creator()[t].idx(), detail)
+            })
+        })
+    }
+
+    /// The first fragment (and what is wrong with it) whose floor and ceiling, after the
+    /// cut, do not have the same boundary or hold a face twice (what `Mt::validate`
+    /// checks of every fragment), read from what the cut changed.
     /// A collapse fragment the cut split is checked whole, with each one split off it
     /// (`floor` and `ceiling` list them, as step 3 read them). One it changed without
     /// splitting is checked from what changed ([`Delta::check`]): its floor and ceiling
@@ -2582,18 +2647,6 @@ impl Changed<'_> {
         floor: &[Vec<u32>],
         ceiling: &[Vec<u32>],
     ) -> Result<(), (usize, String)> {
-        let made = self.replaced.iter().map(|r| r.0 as usize);
-        for t in made.chain(self.n_tets..open.tets.len()) {
-            let tet = open.tets[t];
-            if tet[3] == GHOST {
-                continue;
-            }
-            let [a, b, c, d] = tet.map(|v| open.positions[v.idx()]);
-            if crate::geom::orient3d(a, b, c, d) != crate::geom::Sign::Positive {
-                let detail = format!("a tet it made, {tet:?}, is flat or inverted");
-                return Err((open.creator()[t].idx(), detail));
-            }
-        }
         let whole = |f: FragmentId, above: bool| match open.kind[f.idx()] {
             FragmentKind::Root => above,
             FragmentKind::Drain => !above,
