@@ -201,6 +201,70 @@ fn a_step_that_breaks_the_model_stops_the_run() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// The same tilting blade with `--skip-refused`: the run goes on past the steps the model
+/// refuses (step 11 first), warning on stderr and listing them (`refused_steps`), the
+/// blade moving on without cutting, so that a later step cuts again; it writes one valid
+/// mesh per time step (a skipped step's unchanged) and saves a valid model; run
+/// time-critical too. A mesh, which the plain engine cuts whole, refuses the option.
+#[test]
+fn skip_refused_goes_on_past_the_steps_the_model_refuses() {
+    let dir = scratch("cli_scalpel_skip");
+    let (model, b) = fandisk_model(&dir);
+    let blades: Vec<[[f64; 3]; 2]> = (0..=20)
+        .map(|k| blades::tilting_in(&b, k, 20).map(|p| p.to_array()))
+        .collect();
+    let path = dir.join("tilt.json");
+    write_path(&path, &blades);
+    let saved = dir.join("skipped.mt");
+    for (name, extra) in [("direct", &[][..]), ("live", &["--time-critical"][..])] {
+        let out = dir.join(name);
+        let mut args = scalpel_args(&model, &path, &out, &saved, extra);
+        args.push("--skip-refused");
+        let o = common::mtcut(&args);
+        let (stdout, stderr) = (cli_support::stdout(&o), cli_support::stderr(&o));
+        assert!(o.status.success(), "{name}: {stderr}");
+        assert!(
+            stderr.contains("step 11") && stderr.contains("refused"),
+            "{name}: {stderr}"
+        );
+        assert!(stdout.contains("refused and skipped"), "{name}: {stdout}");
+        let pvd = std::fs::read_to_string(out.join("scalpel.pvd")).expect("pvd");
+        for k in 0..=20 {
+            let name = format!("step-{k:04}.vtu");
+            assert!(pvd.contains(&name), "{name} not listed");
+            read_valid(&out.join(&name));
+        }
+        let mt = Mt::load(&saved).expect("saved model");
+        assert!(mt.validate().is_valid(), "{name}: saved model invalid");
+        args.push("--json");
+        let j = json(&args);
+        let refused = j["refused_steps"].as_array().expect("refused_steps");
+        assert_eq!(refused[0], 11, "{name}: {j}");
+        let steps = j["steps"].as_array().expect("steps");
+        assert!(steps[10]["refused"].is_string(), "{name}: {}", steps[10]);
+        assert!(steps[9]["refused"].is_null(), "{name}: {}", steps[9]);
+        let cuts_again = steps[11..]
+            .iter()
+            .any(|s| s["refused"].is_null() && s["polygons"].as_u64() > Some(0));
+        assert!(cuts_again, "{name}: no step cut after the first skipped");
+    }
+    let mesh_out = dir.join("mesh");
+    fails(
+        &[
+            "scalpel",
+            s(&data("fandisk.node")),
+            "--path",
+            s(&path),
+            "-o",
+            s(&mesh_out),
+            "--skip-refused",
+        ],
+        &["--skip-refused is for a model"],
+    );
+    assert!(!mesh_out.exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// A blade turning by 0.5° per step, cut at every step: step 41 would leave a mesh between
 /// the finest and the coarsest pinched at a crack tip (before the MT cut looked for that,
 /// it was taken, and the mesh written at the 7/9 quantile of fragment errors was pinched).

@@ -27,7 +27,8 @@
 //!   same tilt in 20 steps), and for a turning blade whose edge ends inside pinion or
 //!   liver, some steps would break a fragment where the levels disagree on the last
 //!   crack's end. The MT cut checks each fragment it changed and refuses such a step
-//!   ([`CutError::MtInconsistent`]), the MT left as it was; the CLI stops there.
+//!   ([`CutError::MtInconsistent`]), the MT left as it was; the CLI stops there (or, with
+//!   `--skip-refused`, moves the blade on without cutting: [`Scalpel::skip_to`]).
 //! * Random paths (turning, leaning, through the body or ending inside it; the plain-mesh
 //!   engine takes every step of them, tests/cut_scalpel.rs) meet such refusals often: 46,
 //!   36 and 37 of 100 paths on fandisk's, pinion's and liver's MTs have a step refused
@@ -148,6 +149,16 @@ impl Incision {
     /// Whether steps were deferred: the blade is not where the crack ends.
     pub fn is_behind(&self) -> bool {
         self.blade != self.end
+    }
+
+    /// Moves the blade to `to` without cutting, and the crack's end with it: the next step
+    /// begins a crack at `to`, the area from where the crack ended to `to` left uncut (a
+    /// step the model refused, skipped: see [`Scalpel::skip_to`]).
+    pub fn skip_to(&mut self, to: Blade) -> Result<(), PolygonError> {
+        crate::geom::check_points(&to)?;
+        self.blade = to;
+        self.end = to;
+        Ok(())
     }
 
     /// Moves the blade to `to`, passing `cut` the polygons to cut: the area swept from
@@ -331,6 +342,15 @@ impl Scalpel {
         self.incision.blade()
     }
 
+    /// Moves the blade to `to` without cutting ([`Incision::skip_to`]): after a step the
+    /// MT refused, the next step then begins a new crack at `to` instead of sweeping again
+    /// from where the crack ends, which continues the last polygon at the angle that was
+    /// refused (measured in the module docs' limits), and the refused step's area stays
+    /// uncut.
+    pub fn skip_to(&mut self, to: Blade) -> Result<(), ScalpelError> {
+        Ok(self.incision.skip_to(to)?)
+    }
+
     /// The blade and where its crack ends.
     pub fn incision(&self) -> &Incision {
         &self.incision
@@ -460,6 +480,23 @@ mod tests {
         // A bad position too.
         let bad = [DVec3::new(f64::NAN, 0.0, 0.0), DVec3::Z];
         assert!(incision.step(bad, |_| Ok::<(), PolygonError>(())).is_err());
+        assert_eq!(incision, was);
+    }
+
+    #[test]
+    fn a_skipped_step_moves_the_crack_end_without_cutting() {
+        let mut incision = Incision::new(blade(0.0), 0.0).unwrap();
+        stepped(&mut incision, blade(0.2), false).unwrap();
+        incision.skip_to(blade(0.5)).unwrap();
+        assert_eq!((incision.blade(), incision.end()), (blade(0.5), blade(0.5)));
+        // The next step begins at the skipped-to blade: the area 0.2..0.5 stays uncut.
+        let cut = stepped(&mut incision, blade(0.7), false).unwrap();
+        let xs: Vec<f64> = cut[0].iter().map(|p| p.x).collect();
+        assert!(xs.iter().all(|&x| x == 0.5 || x == 0.7), "{xs:?}");
+        // A bad position is refused, the incision as it was.
+        let was = incision;
+        let bad = [DVec3::new(0.0, f64::INFINITY, 0.0), DVec3::Z];
+        assert!(incision.skip_to(bad).is_err());
         assert_eq!(incision, was);
     }
 

@@ -18,7 +18,15 @@
 //! coarser levels) or that leaves an invalid model or current mesh stops the run with an
 //! error naming the step and the meshes written: the steps before it (time-critical, that
 //! step's current mesh too, written before the model's cut) stay written and listed, and
-//! `--save` writes nothing.
+//! `--save` writes nothing. With `--skip-refused` a refused step is skipped instead: the
+//! model stays as it was, the step's mesh is written (unchanged) so the series keeps one
+//! mesh per time step, the blade moves on without cutting ([`Scalpel::skip_to`]: the next
+//! step begins a crack where the blade is), and the run goes on; time-critical, the
+//! refused cut is dropped from the model and from the current mesh, which is extracted
+//! again ([`LiveMt::process_pending`]). Either way the refused step's area stays uncut (a
+//! bridge in the incision). The summary lists the steps skipped (a warning on stderr,
+//! `refused_steps` in `--json`). A step that leaves an invalid model or mesh still stops
+//! the run.
 //!
 //! `--min-advance F` defers a step until the blade is F × the median edge length of the
 //! mesh (a model's finest mesh) from where the incision ends, then cuts all the area swept
@@ -33,7 +41,10 @@
 
 use crate::CliResult;
 use crate::parse;
-use mtcut::cut::{Blade, Components, CutOptions, Cutter, Incision, LiveMt, PendingBudget, Scalpel};
+use mtcut::cut::{
+    Blade, Components, CutError, CutOptions, Cutter, Incision, LiveMt, PendingBudget, Scalpel,
+    ScalpelError, ScalpelStep,
+};
 use mtcut::geom::{CutPolygon, DVec3};
 use mtcut::io::{PvdEntry, read_mesh, write_mesh, write_pvd};
 use mtcut::mesh::TetMesh;
@@ -79,9 +90,19 @@ pub struct Args {
     /// ends (0: cut every step); the last step cuts what is left.
     #[arg(long, value_name = "F", default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse::min_advance)]
     min_advance: f64,
+    /// Skip a step the model refuses (the model as it was; see above) instead of stopping
+    /// the run, and report the steps skipped. For a model only.
+    #[arg(long)]
+    skip_refused: bool,
     /// Print the statistics as one JSON object.
     #[arg(long)]
     json: bool,
+}
+
+/// Whether `e`, an error of a scalpel step, is the model refusing the cut (the model as
+/// it was), which `--skip-refused` skips.
+fn is_refusal(e: &ScalpelError) -> bool {
+    matches!(e, ScalpelError::Cut(CutError::MtInconsistent { .. }))
 }
 
 /// The incision of a run: its blade at the path's start, deferring steps shorter than
@@ -210,12 +231,31 @@ pub fn run(args: Args) -> CliResult {
         };
     write_step(0, scalpel.mt(), &mut series)?;
     let start = Instant::now();
+    let mut refused_steps: Vec<usize> = Vec::new();
     for (k, &to) in blades.iter().enumerate().skip(1) {
-        let mut step = scalpel.step(to).map_err(|e| series.failed(k, &e))?;
+        // A refused step, skipped with --skip-refused, leaves the model as it was; the
+        // blade then moves on without cutting (`Scalpel::skip_to`), so that the next step
+        // begins a crack at the blade rather than sweeping again from the refused angle.
+        let mut refusal: Option<String> = None;
+        let mut skip = |r: Result<ScalpelStep, ScalpelError>| match r {
+            Err(e) if args.skip_refused && is_refusal(&e) => {
+                refusal.get_or_insert(e.to_string());
+                Ok(ScalpelStep::default())
+            }
+            r => r.map_err(|e| series.failed(k, &e)),
+        };
+        let mut step = skip(scalpel.step(to))?;
         if k + 1 == blades.len() {
-            let rest = scalpel.catch_up().map_err(|e| series.failed(k, &e))?;
+            let rest = skip(scalpel.catch_up())?;
             step.cuts.extend(rest.cuts);
             step.deferred = rest.deferred;
+        }
+        if let Some(e) = &refusal {
+            scalpel.skip_to(to).map_err(|e| series.failed(k, &e))?;
+            refused_steps.push(k);
+            if !args.json {
+                eprintln!("mtcut: warning: step {k} skipped (its area left uncut): {e}");
+            }
         }
         let t_validate = Instant::now();
         let report = scalpel.mt().validate();
@@ -228,6 +268,7 @@ pub fn run(args: Args) -> CliResult {
         if args.json {
             steps.push(json!({
                 "step": k,
+                "refused": refusal,
                 "budget_met": budget_met,
                 "deferred": step.deferred,
                 "polygons": step.cuts.len(),
@@ -242,7 +283,13 @@ pub fn run(args: Args) -> CliResult {
                 "step {k:<4}  {} polygon(s){}, {} tets cut, {} component(s), {:.4} s (validate \
                  {validate_seconds:.3} s)",
                 step.cuts.len(),
-                if step.deferred { " (deferred)" } else { "" },
+                if refusal.is_some() {
+                    " (refused, skipped)"
+                } else if step.deferred {
+                    " (deferred)"
+                } else {
+                    ""
+                },
                 step.tets_cut(),
                 components,
                 step.seconds()
@@ -250,11 +297,25 @@ pub fn run(args: Args) -> CliResult {
         }
     }
     let seconds = start.elapsed().as_secs_f64();
-    finish(&args, scalpel.into_mt(), steps, &series, seconds)
+    finish(
+        &args,
+        scalpel.into_mt(),
+        steps,
+        &series,
+        seconds,
+        &refused_steps,
+    )
 }
 
 /// After the last step: saves the model if asked, prints the run's summary.
-fn finish(args: &Args, mt: Mt, steps: Vec<Value>, series: &Series, seconds: f64) -> CliResult {
+fn finish(
+    args: &Args,
+    mt: Mt,
+    steps: Vec<Value>,
+    series: &Series,
+    seconds: f64,
+    refused_steps: &[usize],
+) -> CliResult {
     if let Some(save) = &args.save {
         mt.save(save)?;
     }
@@ -267,6 +328,7 @@ fn finish(args: &Args, mt: Mt, steps: Vec<Value>, series: &Series, seconds: f64)
                 "time_critical": args.time_critical,
                 "steps": steps,
                 "components": mt.nb_components(),
+                "refused_steps": refused_steps,
                 "valid": true,
                 "pvd": pvd.display().to_string(),
                 "saved": args.save.as_ref().map(|p| p.display().to_string()),
@@ -276,12 +338,16 @@ fn finish(args: &Args, mt: Mt, steps: Vec<Value>, series: &Series, seconds: f64)
         return Ok(());
     }
     out!(
-        "scalpel    {} steps{}, {} component(s), valid after every step; {:.3} s",
+        "scalpel    {} steps{}{}, {} component(s), valid after every step; {:.3} s",
         meshes - 1,
         if args.time_critical {
             " (time-critical)"
         } else {
             ""
+        },
+        match refused_steps.len() {
+            0 => String::new(),
+            n => format!(", {n} refused and skipped ({refused_steps:?})"),
         },
         mt.nb_components(),
         seconds
@@ -302,6 +368,7 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
     series.write(0, live.mesh())?;
     let start = Instant::now();
     let mut steps: Vec<Value> = Vec::new();
+    let mut refused_steps: Vec<usize> = Vec::new();
     for (k, &to) in blades.iter().enumerate().skip(1) {
         let (mut polygons, mut frontier_s, mut tets_cut) = (0, 0.0, 0);
         let mut cut = |polygon: &CutPolygon| -> Result<(), Box<dyn std::error::Error>> {
@@ -323,9 +390,17 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         let r = live
             .process_pending(PendingBudget::All)
             .map_err(|e| series.failed(k, &e))?;
-        // The model refused a cut (and is as it was): stop as a step that broke it would.
-        if let Some(e) = r.refused.first() {
-            return Err(series.failed(k, e).into());
+        // The model refused a cut (and is as it was, the current mesh extracted again):
+        // stop as a step that broke it would, or go on with --skip-refused.
+        let refusal = r.refused.first().map(|e| e.to_string());
+        if let Some(e) = &refusal {
+            if !args.skip_refused {
+                return Err(series.failed(k, e).into());
+            }
+            refused_steps.push(k);
+            if !args.json {
+                eprintln!("mtcut: warning: step {k}: the model's cut was refused and dropped: {e}");
+            }
         }
         let t_validate = Instant::now();
         let (model, mesh) = (
@@ -342,6 +417,7 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         if args.json {
             steps.push(json!({
                 "step": k,
+                "refused": refusal,
                 "deferred": incision.is_behind(),
                 "polygons": polygons,
                 "current_tets_cut": tets_cut,
@@ -371,7 +447,14 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         }
     }
     let seconds = start.elapsed().as_secs_f64();
-    finish(args, live.into_mt()?, steps, &series, seconds)
+    finish(
+        args,
+        live.into_mt()?,
+        steps,
+        &series,
+        seconds,
+        &refused_steps,
+    )
 }
 
 /// A scalpel through a mesh (not a model): each step cuts the mesh with the area the blade
@@ -391,6 +474,9 @@ fn run_mesh(args: &Args) -> CliResult {
     }
     if args.time_critical {
         return refused("--time-critical");
+    }
+    if args.skip_refused {
+        return refused("--skip-refused");
     }
     if let Some(save) = &args.save {
         parse::mesh_output(save)?;
