@@ -51,6 +51,18 @@ fn fandisk_model(dir: &Path) -> (std::path::PathBuf, Aabb) {
     (model, b)
 }
 
+/// Fandisk's model in `dir` and a path file of a blade tilting as it crosses it in 20
+/// steps (`blades::tilting_in`), whose eleventh step the model refuses.
+fn tilting_path(dir: &Path) -> (std::path::PathBuf, std::path::PathBuf) {
+    let (model, b) = fandisk_model(dir);
+    let blades: Vec<[[f64; 3]; 2]> = (0..=20)
+        .map(|k| blades::tilting_in(&b, k, 20).map(|p| p.to_array()))
+        .collect();
+    let path = dir.join("tilt.json");
+    write_path(&path, &blades);
+    (model, path)
+}
+
 /// A blade crossing the model's box in 12 steps, in one plane.
 fn straight_blade(b: &Aabb) -> Vec<[[f64; 3]; 2]> {
     let (c, d) = (b.center(), b.max - b.min);
@@ -164,12 +176,7 @@ fn bad_path_files_are_refused_by_name() {
 #[test]
 fn a_step_that_breaks_the_model_stops_the_run() {
     let dir = scratch("cli_scalpel_tilt");
-    let (model, b) = fandisk_model(&dir);
-    let blades: Vec<[[f64; 3]; 2]> = (0..=20)
-        .map(|k| blades::tilting_in(&b, k, 20).map(|p| p.to_array()))
-        .collect();
-    let path = dir.join("tilt.json");
-    write_path(&path, &blades);
+    let (model, path) = tilting_path(&dir);
     let out = dir.join("series");
     let saved = dir.join("never.mt");
     let err = fails(
@@ -209,12 +216,7 @@ fn a_step_that_breaks_the_model_stops_the_run() {
 #[test]
 fn skip_refused_goes_on_past_the_steps_the_model_refuses() {
     let dir = scratch("cli_scalpel_skip");
-    let (model, b) = fandisk_model(&dir);
-    let blades: Vec<[[f64; 3]; 2]> = (0..=20)
-        .map(|k| blades::tilting_in(&b, k, 20).map(|p| p.to_array()))
-        .collect();
-    let path = dir.join("tilt.json");
-    write_path(&path, &blades);
+    let (model, path) = tilting_path(&dir);
     let saved = dir.join("skipped.mt");
     for (name, extra) in [("direct", &[][..]), ("live", &["--time-critical"][..])] {
         let out = dir.join(name);
