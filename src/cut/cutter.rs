@@ -1502,3 +1502,38 @@ pub fn cut_mesh(
     result.stats.time.build = build;
     Ok(result)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `hanging_made` on two tets the cut changed: one holding a new vertex (5) whose face
+    /// (5, 1, 2) covers the origin, the other taking the copy (6) of vertex 0, at the
+    /// origin, in place of 0. The copy lies strictly inside that face and is none of its
+    /// corners: hanging. Without the copy the second tet holds no new vertex and nothing
+    /// hangs.
+    #[test]
+    fn a_copy_inside_a_face_the_cut_makes_hangs() {
+        let v = VertexId;
+        let positions = [
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::Z,
+            -DVec3::Z,
+            DVec3::new(-1.0, -1.0, 0.0),
+        ];
+        // The copy stands where vertex 0 does.
+        let position = |x: VertexId| positions[if x == v(6) { 0 } else { x.idx() }];
+        let slots = || {
+            [
+                (TetId(0), [v(5), v(1), v(2), v(3)]),
+                (TetId(32), [v(0), v(1), v(2), v(4)]),
+            ]
+            .into_iter()
+        };
+        let copies = [(v(0), vec![TetId(32)])];
+        assert_eq!(hanging_made(5, position, slots(), &copies, 6), Some(v(6)));
+        assert_eq!(hanging_made(5, position, slots(), &[], 6), None);
+    }
+}
