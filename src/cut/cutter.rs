@@ -140,6 +140,9 @@ struct PlanBuffers {
     /// The tets around a vertex, whole ([`plan_by_parents`]) or their children
     /// ([`plan_vertex`]).
     around: Vec<ParentAt>,
+    /// Per tet of `around`, its tets around the vertex on the negative side: bit `c` for
+    /// its child `c` when split, bit 0 for itself when whole.
+    negative: Vec<u16>,
     entries: Vec<StarEntry>,
     scratch: PlanScratch,
 }
@@ -1123,6 +1126,7 @@ impl Cutter {
         let mut out = Copies::default();
         let PlanBuffers {
             around,
+            negative,
             entries,
             scratch,
         } = buffers;
@@ -1143,30 +1147,30 @@ impl Cutter {
         for &v in examine {
             let run = star.run(v);
             around.clear();
+            negative.clear();
             for &(k, j) in run {
                 let (k, c) = (k as usize, &classes[k as usize]);
                 around.push(if child_of[k] == NONE {
+                    let positive = whole_side(k) == Side::Positive;
+                    negative.push(u16::from(!positive));
                     ParentAt {
                         verts: tets[k],
                         states: c.states,
                         j,
-                        sides: if whole_side(k) == Side::Positive {
-                            1
-                        } else {
-                            2
-                        },
+                        sides: if positive { 1 } else { 2 },
                         regular: true,
                     }
                 } else {
                     let ch = &children[child_of[k] as usize];
-                    let (regular, sides) = entry_at_vertex(ch.config);
-                    let r = ch.rank[j as usize];
+                    let at = entry_at_vertex(ch.config);
+                    let r = ch.rank[j as usize] as usize;
+                    negative.push(at.negative[r]);
                     ParentAt {
                         verts: tets[k],
                         states: c.states,
                         j,
-                        sides: (sides >> (2 * r)) & 3,
-                        regular: regular & (1 << r) != 0,
+                        sides: (at.sides >> (2 * r)) & 3,
+                        regular: at.regular & (1 << r) != 0,
                     }
                 });
             }
@@ -1190,13 +1194,16 @@ impl Cutter {
             match plan {
                 ParentPlan::Keep => {}
                 ParentPlan::CopyNegative => {
+                    // The children holding the vertex on the negative side, from the
+                    // table entries (in the order `around_v` lists them).
                     let mut members = Vec::with_capacity(2 * run.len());
-                    for &(k, _) in run {
-                        around_v(v, k as usize, &mut |tet, _, side| {
-                            if side == Side::Negative {
-                                members.push(tet);
-                            }
-                        });
+                    for (&(k, _), &mask) in run.iter().zip(negative.iter()) {
+                        let mut m = mask;
+                        while m != 0 {
+                            let c = m.trailing_zeros();
+                            members.push(TetId(32 * k + c));
+                            m &= m - 1;
+                        }
                     }
                     out.groups.push((v, members));
                 }

@@ -522,34 +522,37 @@ pub fn plan_by_parents(around: &[ParentAt], links: &mut LinkSlots) -> ParentPlan
 /// The three local vertices of a tet other than each one.
 const OTHERS: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
 
-/// For table configuration `config` (a [`super::split::Children::config`]): bit `i` of the
-/// first result is set when the entry is regular at canonical vertex `i` (see
-/// [`plan_by_parents`]), and bits `2i`, `2i + 1` of the second give the sides (positive,
-/// negative) of the children at vertex `i`. Computed from the tables the first time a
+/// What a table entry is at each of its canonical vertices on the cut
+/// ([`entry_at_vertex`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AtVertex {
+    /// Bit `i`: the entry is regular at canonical vertex `i` (see [`plan_by_parents`]).
+    pub regular: u8,
+    /// Bits `2i`, `2i + 1`: the sides (positive, negative) of the children at vertex `i`.
+    pub sides: u8,
+    /// Per canonical vertex, the children on the negative side holding it (bit `c` for
+    /// the entry's `c`-th tet): those taking its copy when the negative side is copied.
+    pub negative: [u16; 4],
+}
+
+/// What the entry of table configuration `config` (a [`super::split::Children::config`])
+/// is at each canonical vertex on the cut. Computed from the tables the first time a
 /// configuration is asked for (a cut meets a few dozen of the thousands).
-pub fn entry_at_vertex(config: u16) -> (u8, u8) {
-    use std::sync::atomic::{AtomicU16, Ordering};
-    const UNKNOWN: u16 = u16::MAX;
-    static TABLE: std::sync::OnceLock<Vec<AtomicU16>> = std::sync::OnceLock::new();
-    let table = TABLE.get_or_init(|| (0..NB_CONFIGS).map(|_| AtomicU16::new(UNKNOWN)).collect());
-    let Some(slot) = table.get(config as usize) else {
-        return (0, 0);
-    };
-    // Threads racing on a configuration compute the same value: relaxed is enough.
-    let mut packed = slot.load(Ordering::Relaxed);
-    if packed == UNKNOWN {
-        let (regular, sides) = regularity(config as usize);
-        packed = u16::from(regular) << 8 | u16::from(sides);
-        slot.store(packed, Ordering::Relaxed);
+pub fn entry_at_vertex(config: u16) -> AtVertex {
+    use std::sync::OnceLock;
+    static TABLE: OnceLock<Box<[OnceLock<AtVertex>]>> = OnceLock::new();
+    let table = TABLE.get_or_init(|| (0..NB_CONFIGS).map(|_| OnceLock::new()).collect());
+    match table.get(config as usize) {
+        Some(slot) => *slot.get_or_init(|| regularity(config as usize)),
+        None => AtVertex::default(),
     }
-    ((packed >> 8) as u8, packed as u8)
 }
 
 /// [`entry_at_vertex`] of one configuration.
-fn regularity(config: usize) -> (u8, u8) {
+fn regularity(config: usize) -> AtVertex {
     let (states, _) = config_of_index(config);
     let (locals, codes) = entry(config);
-    let (mut regular, mut sides) = (0u8, 0u8);
+    let mut out = AtVertex::default();
     // Whether local point `p` lies on the parent's face `f` (the one opposite vertex f).
     let on_face = |p: u8, f: usize| -> bool {
         let p = p as usize;
@@ -575,7 +578,11 @@ fn regularity(config: usize) -> (u8, u8) {
             _ => 4,
         };
         let mask = at.iter().fold(0, |m, &c| m | bit_of(c));
-        sides |= (mask & 3) << (2 * i);
+        out.sides |= (mask & 3) << (2 * i);
+        out.negative[i] = at
+            .iter()
+            .filter(|&&c| codes[c] == SIDE_NEGATIVE)
+            .fold(0, |m, &c| m | 1 << c);
         let mut ok = mask & 4 == 0;
         // One group per side through faces at the vertex (two children sharing three
         // points share a face).
@@ -644,10 +651,10 @@ fn regularity(config: usize) -> (u8, u8) {
             ok &= expected != 0 && found == expected;
         }
         if ok {
-            regular |= 1 << i;
+            out.regular |= 1 << i;
         }
     }
-    (regular, sides)
+    out
 }
 
 /// A small open-addressing table from a key (a face, a vertex of a group) to the first
