@@ -272,9 +272,10 @@ pub struct LinkSlots {
     adj: [u64; 64],
     adj2: [u64; 64],
     join: [u64; 64],
-    /// Link edges between two corners on the cut: (ends, the corner or tet standing for
-    /// the triangle, its side).
-    in_plane: Vec<(usize, usize, usize, u8)>,
+    /// Link edges between two corners on the cut, packed (bits 8 and up: the edge's ends
+    /// and the triangle's side, compared as one key; bits 0-7: the corner or tet standing
+    /// for the triangle).
+    in_plane: Vec<u32>,
 }
 
 impl Default for LinkSlots {
@@ -444,8 +445,9 @@ pub fn plan_by_parents(around: &[ParentAt], links: &mut LinkSlots) -> ParentPlan
             let x = (bits[0] | bits[1]).trailing_zeros() as usize;
             for (i, j) in [(0, 1), (0, 2), (1, 2)] {
                 if bits[2] & 1 << c[i] != 0 && bits[2] & 1 << c[j] != 0 {
-                    let edge = (c[i].min(c[j]), c[i].max(c[j]), x, a.sides);
-                    links.in_plane.push(edge);
+                    let (lo, hi) = (c[i].min(c[j]) as u32, c[i].max(c[j]) as u32);
+                    let key = (lo << 6 | hi) << 2 | u32::from(a.sides);
+                    links.in_plane.push(key << 8 | x as u32);
                 }
             }
         }
@@ -471,9 +473,11 @@ pub fn plan_by_parents(around: &[ParentAt], links: &mut LinkSlots) -> ParentPlan
     links.join[..m].copy_from_slice(&links.adj[..m]);
     let mut glued_in_plane = [0i64; 2];
     let in_plane = &links.in_plane;
-    for (i, &(lo, hi, x, side)) in in_plane.iter().enumerate() {
-        for &(lo2, hi2, w, side2) in &in_plane[i + 1..] {
-            if (lo, hi) == (lo2, hi2) && side == side2 {
+    for (i, &e) in in_plane.iter().enumerate() {
+        let (x, side) = ((e & 0xff) as usize, (e >> 8) & 3);
+        for &f in &in_plane[i + 1..] {
+            if e >> 8 == f >> 8 {
+                let w = (f & 0xff) as usize;
                 links.join[x] |= 1 << w;
                 links.join[w] |= 1 << x;
                 glued_in_plane[side as usize - 1] += 1;
