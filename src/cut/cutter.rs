@@ -706,13 +706,16 @@ impl Cutter {
         // Vertices whose stars changed since the last pass (None: all).
         let mut redo: Option<Vec<VertexId>> = None;
         let mut copies = Copies::default();
-        // The snapped vertices (sorted); unsnapping only removes some.
+        // The snapped vertices (sorted); unsnapping only removes some. Indexing them is
+        // part of planning their copies (timed with it).
+        let t = Instant::now();
         if self.snapped_slot.len() < n_vertices {
             self.snapped_slot.resize(n_vertices, NONE);
         }
         star.build(tets, classes, &mut self.snapped_slot);
         snapped.clear();
         snapped.extend_from_slice(&star.vertices);
+        times.unglue += t.elapsed().as_secs_f64();
         let mut in_cut: Vec<(usize, Side)> = Vec::new();
         loop {
             passes += 1;
