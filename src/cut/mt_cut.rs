@@ -1344,6 +1344,15 @@ impl MtCutter {
                 .try_fold(0b1111, |m, &y| local(y).map(|j| m & !(1 << j)))
                 .unwrap_or(0)
         };
+        // Only the ghosts' triangles are looked up (below, subdividing the ghosts): the
+        // other faces of the split tets, most of them, are not listed.
+        let ghost_faces: HashSet<FaceKey, FxBuild> = ghosts
+            .iter()
+            .map(|&g| {
+                let t = mt.tet(TetId(g));
+                oriented_face(t[0].0, t[1].0, t[2].0)
+            })
+            .collect();
         let mut sub_faces: HashMap<FaceKey, Vec<(Tet, Side, Tet)>, FxBuild> = HashMap::default();
         for (k, &i) in child_of.iter().enumerate() {
             if i == NONE {
@@ -1355,7 +1364,11 @@ impl MtCutter {
                 let face = lf.map(|j| parent[j].0);
                 oriented_face(face[0], face[1], face[2])
             });
-            let wanted = keys.map(|key| !sub_faces.contains_key(&key));
+            let wanted =
+                keys.map(|key| ghost_faces.contains(&key) && !sub_faces.contains_key(&key));
+            if wanted == [false; 4] {
+                continue;
+            }
             let mut subs: [Vec<(Tet, Side, Tet)>; 4] = Default::default();
             for c in 0..ch.len {
                 let t = ch.tets[c];
@@ -1671,23 +1684,54 @@ impl MtCutter {
         // tet or ghost able to coexist with them in a frontier matches. (A tet of another
         // level may hold the opposite face on the other side of the crack: snapping bends
         // the cut surface differently on each level.)
-        let mut present: HashMap<FaceKey, Vec<u32>, FxBuild> = HashMap::default();
-        let all_cut = |t: &Tet, f: &[usize; 3]| on_crack(f.map(|j| t[j]));
-        for &t in &touched {
+        // The tets and ghosts holding each crack face: the first in the map, the others
+        // chained (`holders`: tet, next; u32::MAX ends), one allocation for all.
+        let mut present: HashMap<FaceKey, u32, FxBuild> = HashMap::default();
+        let mut holders: Vec<(u32, u32)> = Vec::new();
+        // Per touched tet, its faces on the crack as `on_crack` finds them (bit `i`: the
+        // face opposite corner `i`, as `TET_FACES` lists them), from one look-up per
+        // corner instead of three per face.
+        let crack_faces = |t: &Tet| -> u8 {
+            let (mut cut, mut on) = (0u8, 0u8);
+            for (j, &v) in t.iter().enumerate() {
+                if is_cut_vertex(v) {
+                    cut |= 1 << j;
+                    on |= 1 << j;
+                } else if out_vertices.binary_search(&v).is_ok() {
+                    on |= 1 << j;
+                }
+            }
+            (0..4)
+                .filter(|&i| {
+                    let face = 0b1111 & !(1u8 << i);
+                    on & face == face && cut & face != 0
+                })
+                .fold(0, |m, i| m | 1 << i)
+        };
+        let touched_crack: Vec<u8> = touched
+            .iter()
+            .map(|&t| crack_faces(&open.tets[t as usize]))
+            .collect();
+        let nb_crack_faces: u32 = touched_crack.iter().map(|m| m.count_ones()).sum();
+        present.reserve(nb_crack_faces as usize);
+        holders.reserve(nb_crack_faces as usize);
+        let mut hold = |f: FaceKey, t: u32| {
+            let at = holders.len() as u32;
+            let next = present.insert(f, at).unwrap_or(u32::MAX);
+            holders.push((t, next));
+        };
+        for (&t, &on) in touched.iter().zip(&touched_crack) {
             let tet = open.tets[t as usize];
-            for (lf, f) in TET_FACES.iter().zip(faces_of(&tet)) {
-                if all_cut(&tet, lf) {
-                    present.entry(f).or_default().push(t);
+            for (i, lf) in TET_FACES.iter().enumerate() {
+                if on & (1 << i) != 0 {
+                    hold(oriented_face(tet[lf[0]].0, tet[lf[1]].0, tet[lf[2]].0), t);
                 }
             }
         }
         for &g in &ghost_touched {
             let t = open.tets[g as usize];
             if on_crack([t[0], t[1], t[2]]) {
-                present
-                    .entry(flip_face(oriented_face(t[0].0, t[1].0, t[2].0)))
-                    .or_default()
-                    .push(g);
+                hold(flip_face(oriented_face(t[0].0, t[1].0, t[2].0)), g);
             }
         }
         let coexist = |a: usize, b: usize| {
@@ -1695,13 +1739,21 @@ impl MtCutter {
                 && !dag.reaches(open.destroyer()[b], open.creator()[a])
         };
         let mut crack: Vec<(Tet, FragmentId, FragmentId)> = Vec::new();
-        for &t in &touched {
+        for (&t, &on) in touched.iter().zip(&touched_crack) {
             let tet = open.tets[t as usize];
-            for (lf, f) in TET_FACES.iter().zip(faces_of(&tet)) {
-                let matched = present
-                    .get(&flip_face(f))
-                    .is_some_and(|l| l.iter().any(|&o| coexist(t as usize, o as usize)));
-                if all_cut(&tet, lf) && !matched {
+            for (i, lf) in TET_FACES.iter().enumerate() {
+                if on & (1 << i) == 0 {
+                    continue;
+                }
+                let f = oriented_face(tet[lf[0]].0, tet[lf[1]].0, tet[lf[2]].0);
+                let mut at = present.get(&flip_face(f)).copied().unwrap_or(u32::MAX);
+                let mut matched = false;
+                while at != u32::MAX && !matched {
+                    let (o, next) = holders[at as usize];
+                    matched = coexist(t as usize, o as usize);
+                    at = next;
+                }
+                if !matched {
                     let g = [tet[lf[0]], tet[lf[1]], tet[lf[2]], GHOST];
                     crack.push((g, open.creator()[t as usize], open.destroyer()[t as usize]));
                     ghost_touched.push((n_pool + appended_parents.len() + crack.len() - 1) as u32);
@@ -2596,11 +2648,11 @@ impl Changed<'_> {
         origin_of(g, self.nf, self.born)
     }
 
-    /// Scratch of [`Delta::check`] for one thread: face tables, and a mark per vertex
-    /// from before the cut.
-    fn check_scratch(&self) -> (FaceCounts, FaceCounts, Vec<bool>) {
+    /// Scratch of [`Changed::check`] for one thread.
+    fn check_scratch(&self) -> CheckScratch {
         (
             FaceCounts::default(),
+            DeltaCounts::default(),
             FaceCounts::default(),
             vec![false; self.nv],
         )
@@ -2694,28 +2746,38 @@ impl Changed<'_> {
         // Collapse fragments, each with the fragments split off it, on both cores. Those
         // the cut neither wrote a tet of nor split (involved as cracked by earlier cuts, as
         // most are on a scalpel's later steps) keep the tets, and the boundary, they had.
-        let mut wrote: Vec<u32> = self.replaced.iter().flat_map(|r| [r.2.0, r.3.0]).collect();
+        // Per fragment before the cut (dense: one look-up per tet below, where hashing
+        // each took a fifth of this check): whether the cut wrote a tet of it, or split it.
+        let mut wrote = vec![false; self.nf];
+        for r in self.replaced {
+            wrote[r.2.idx()] = true;
+            wrote[r.3.idx()] = true;
+        }
         for t in self.n_tets..open.tets.len() {
             let (c, d) = (open.creator()[t], open.destroyer()[t]);
-            wrote.extend([self.origin(c).0, self.origin(d).0]);
+            wrote[self.origin(c).idx()] = true;
+            wrote[self.origin(d).idx()] = true;
         }
-        wrote.sort_unstable();
-        wrote.dedup();
-        let mut split: Vec<FragmentId> = self.born.to_vec();
-        split.sort_unstable();
-        split.dedup();
+        let mut split = vec![false; self.nf];
+        for f in self.born {
+            split[f.idx()] = true;
+        }
+        let was_split = |f: FragmentId| split.get(f.idx()).copied().unwrap_or(false);
         // Per collapse fragment changed and not split: the tets its floor and its ceiling
-        // lost and gained.
-        let mut change: HashMap<u32, Delta, FxBuild> = HashMap::default();
+        // lost and gained (`deltas[slot[f]]`).
+        let mut slot = vec![u32::MAX; self.nf];
+        let mut deltas: Vec<Delta> = Vec::new();
         {
-            let unsplit_collapse = |f: FragmentId| {
-                f.idx() < self.nf
-                    && open.kind[f.idx()] == FragmentKind::Collapse
-                    && split.binary_search(&f).is_err()
-            };
             let mut note = |f: FragmentId, gained: bool, level: usize, tet: Tet| {
-                if unsplit_collapse(f) {
-                    let d = change.entry(f.0).or_default();
+                if f.idx() < self.nf
+                    && open.kind[f.idx()] == FragmentKind::Collapse
+                    && !split[f.idx()]
+                {
+                    if slot[f.idx()] == u32::MAX {
+                        slot[f.idx()] = deltas.len() as u32;
+                        deltas.push(Delta::default());
+                    }
+                    let d = &mut deltas[slot[f.idx()] as usize];
                     let lists = if gained { &mut d.gained } else { &mut d.lost };
                     lists[level].push(tet);
                 }
@@ -2734,10 +2796,9 @@ impl Changed<'_> {
         }
         let whole_check = |counts: &mut FaceCounts, i: usize| -> Option<(usize, String)> {
             let f = order[i];
-            let was_split = split.binary_search(&f).is_ok();
             // The fragment and those split off it.
             let mut ids: Vec<FragmentId> = Vec::new();
-            if was_split {
+            if was_split(f) {
                 let links = floor[i].iter().map(|&t| open.destroyer()[t as usize]);
                 ids.extend(links.chain(ceiling[i].iter().map(|&t| open.creator()[t as usize])));
                 ids.retain(|&g| g != f);
@@ -2762,17 +2823,15 @@ impl Changed<'_> {
             }
             None
         };
-        let check_one = |scratch: &mut (FaceCounts, FaceCounts, Vec<bool>),
-                         i: usize|
-         -> Option<(usize, String)> {
+        let check_one = |scratch: &mut CheckScratch, i: usize| -> Option<(usize, String)> {
             let f = order[i];
             if open.kind[f.idx()] != FragmentKind::Collapse
-                || !(split.binary_search(&f).is_ok() || wrote.binary_search(&f.0).is_ok())
+                || !(was_split(f) || wrote.get(f.idx()).copied().unwrap_or(false))
             {
                 return None;
             }
-            let (counts, old_faces, marks) = scratch;
-            let Some(delta) = change.get(&f.0) else {
+            let (counts, delta_counts, old_faces, marks) = scratch;
+            let Some(delta) = slot.get(f.idx()).and_then(|&k| deltas.get(k as usize)) else {
                 return whole_check(counts, i);
             };
             let found = delta
@@ -2780,7 +2839,7 @@ impl Changed<'_> {
                     open,
                     self.nv,
                     [&floor[i], &ceiling[i]],
-                    counts,
+                    delta_counts,
                     old_faces,
                     marks,
                 )
@@ -2906,50 +2965,58 @@ impl Delta {
         open: &OpenMt,
         nv: usize,
         lists: [&[u32]; 2],
-        counts: &mut FaceCounts,
+        counts: &mut DeltaCounts,
         old_faces: &mut FaceCounts,
         marks: &mut [bool],
     ) -> Option<String> {
+        // One table for every test below: per face, how often the floor gained it, the
+        // ceiling gained it, the floor lost it and the ceiling lost it, by orientation
+        // (each face of a changed tet hashed once, where a table per test hashed the
+        // gained tets' faces twice).
         counts.clear();
-        let sides = [
-            self.gained[0].iter().chain(&self.lost[1]),
-            self.gained[1].iter().chain(&self.lost[0]),
+        let changed = [
+            &self.gained[0],
+            &self.gained[1],
+            &self.lost[0],
+            &self.lost[1],
         ];
-        for (side, tets) in sides.into_iter().enumerate() {
+        for (which, tets) in changed.into_iter().enumerate() {
             for t in tets {
                 for f in TET_FACES {
                     let (key, odd) = face_key(t, f);
-                    let n = &mut counts.entry(key).or_default()[side][odd];
+                    let n = &mut counts.entry(key).or_default()[which][odd];
                     *n = n.saturating_add(1);
                 }
             }
         }
         let sum = |[even, odd]: [u16; 2]| i32::from(even) - i32::from(odd);
-        let differ = counts.values().filter(|n| sum(n[0]) != sum(n[1])).count();
+        let differ = counts
+            .values()
+            .filter(|n| sum(n[0]) + sum(n[3]) != sum(n[1]) + sum(n[2]))
+            .count();
         if differ > 0 {
             return Some(format!(
                 "what the cut changed of its floor and of its ceiling differs at {differ} \
                  faces: they would not have the same boundary"
             ));
         }
-        let older = |v: VertexId| v == GHOST || v.idx() < nv;
+        let older = |v: u32| v == GHOST.0 || (v as usize) < nv;
         for (level, what) in ["floor", "ceiling"].into_iter().enumerate() {
-            counts.clear();
             old_faces.clear();
-            for t in &self.gained[level] {
-                for f in TET_FACES {
-                    let (key, odd) = face_key(t, f);
-                    if f.iter().all(|&j| older(t[j])) {
-                        old_faces.entry(key).or_default();
-                        for &j in &f {
-                            if t[j] != GHOST {
-                                marks[t[j].idx()] = true;
-                            }
-                        }
-                    } else {
-                        let n = &mut counts.entry(key).or_default()[0][odd];
-                        *n = n.saturating_add(1);
+            // Faces with a vertex the cut made, held twice with one orientation.
+            let mut twice = 0;
+            for (key, n) in counts.iter() {
+                let gained = n[level];
+                if gained == [0, 0] {
+                    continue;
+                }
+                if key.iter().all(|&v| older(v)) {
+                    old_faces.entry(*key).or_default();
+                    for &v in key.iter().filter(|&&v| v != GHOST.0) {
+                        marks[v as usize] = true;
                     }
+                } else if gained.iter().any(|&c| c > 1) {
+                    twice += 1;
                 }
             }
             if !old_faces.is_empty() {
@@ -2972,9 +3039,8 @@ impl Delta {
                     }
                 }
             }
-            let twice = counts
+            twice += old_faces
                 .values()
-                .chain(old_faces.values())
                 .filter(|n| n[0].iter().any(|&c| c > 1))
                 .count();
             if twice > 0 {
@@ -3001,6 +3067,14 @@ fn linked<'a>(
 /// Per triangle (its vertices sorted), how often each of two sets of tets holds it with
 /// each orientation.
 type FaceCounts = HashMap<[u32; 3], [[u16; 2]; 2], FxBuild>;
+
+/// Per triangle (its vertices sorted), how often four sets of tets hold it with each
+/// orientation ([`Delta::check`]).
+type DeltaCounts = HashMap<[u32; 3], [[u16; 2]; 4], FxBuild>;
+
+/// Scratch of [`Changed::check`] for one thread: the tables of whole checks and of
+/// [`Delta::check`], and a mark per vertex from before the cut.
+type CheckScratch = (FaceCounts, DeltaCounts, FaceCounts, Vec<bool>);
 
 /// Two sets of tets compared face by face (a fragment's floor and ceiling; what a cut made
 /// of a closed mesh and what it replaced), as `Mt::validate` compares a fragment's floor
