@@ -523,16 +523,31 @@ impl OpenMt {
                 (this.tets, this.cell_data, this.creator, this.destroyer)
             }
             None => {
+                // The stable sort by arc, as a sort by (arc, index): each key computed once,
+                // sorted and gathered on both cores (a cut separating fandisk's MT relabels
+                // most of its pool of about 0.2 M tets: this branch 13 ms -> 7-8.5 ms).
                 let key = |t: usize| arc_key(&this.creator, &this.destroyer, t);
-                let mut order: Vec<u32> = (0..nt as u32).collect();
-                order.sort_by_key(|&t| key(t as usize));
-                let keep: Vec<usize> = order.iter().map(|&t| t as usize).collect();
-                (
-                    keep.iter().map(|&t| this.tets[t]).collect(),
-                    this.cell_data.select(&keep),
-                    keep.iter().map(|&t| this.creator[t]).collect(),
-                    keep.iter().map(|&t| this.destroyer[t]).collect(),
-                )
+                let mut order: Vec<(u64, u32)> = (0..nt)
+                    .into_par_iter()
+                    .map(|t| (key(t), t as u32))
+                    .collect();
+                order.par_sort_unstable();
+                let keep: Vec<usize> = order.iter().map(|&(_, t)| t as usize).collect();
+                let ((tets, cell_data), (creator, destroyer)) = rayon::join(
+                    || {
+                        (
+                            keep.iter().map(|&t| this.tets[t]).collect(),
+                            this.cell_data.select(&keep),
+                        )
+                    },
+                    || {
+                        (
+                            keep.iter().map(|&t| this.creator[t]).collect(),
+                            keep.iter().map(|&t| this.destroyer[t]).collect(),
+                        )
+                    },
+                );
+                (tets, cell_data, creator, destroyer)
             }
         };
         debug_assert!(
