@@ -525,13 +525,16 @@ impl OpenMt {
             None => {
                 // The stable sort by arc, as a sort by (arc, index): each key computed once,
                 // sorted and gathered on both cores (a cut separating fandisk's MT relabels
-                // most of its pool of about 0.2 M tets: this branch 13 ms -> 7-8.5 ms).
+                // most of its pool of about 0.2 M tets: this branch 13 -> 9 ms). A merge
+                // sort, which follows the runs of the pool still in order: an unstable one
+                // took 9 ms on the cut of Table 2's 0.3 square, against 5.5 before and 6
+                // with this one.
                 let key = |t: usize| arc_key(&this.creator, &this.destroyer, t);
                 let mut order: Vec<(u64, u32)> = (0..nt)
                     .into_par_iter()
                     .map(|t| (key(t), t as u32))
                     .collect();
-                order.par_sort_unstable();
+                order.par_sort();
                 let keep: Vec<usize> = order.iter().map(|&(_, t)| t as usize).collect();
                 let ((tets, cell_data), (creator, destroyer)) = rayon::join(
                     || {
