@@ -1149,11 +1149,19 @@ impl MtCutter {
         }
         out_vertices.sort_unstable();
         out_vertices.dedup();
-        let on_crack = |f: [VertexId; 3]| {
-            f.iter()
-                .all(|&v| is_cut_vertex(v) || out_vertices.binary_search(&v).is_ok())
-                && f.iter().any(|&v| is_cut_vertex(v))
+        // Per vertex, for the crack's faces: bit 0 on this cut (made or snapped by it), bit
+        // 1 on this cut or an `OUT` vertex. A triangle lies on the crack when every corner
+        // has bit 1 and one has bit 0.
+        let crack_mark = |v: VertexId| -> u8 {
+            if is_cut_vertex(v) {
+                3
+            } else {
+                u8::from(out_vertices.binary_search(&v).is_ok()) << 1
+            }
         };
+        let marks_on_crack =
+            |m: [u8; 3]| m.iter().all(|&x| x & 2 != 0) && m.iter().any(|&x| x & 1 != 0);
+        let on_crack = |f: [VertexId; 3]| marks_on_crack(f.map(crack_mark));
         // Per turning tip, whether tets of every level hold it outside and inside the wedge
         // (then it takes a copy), and which tets keep it (`keeps`).
         let mut turn_groups: HashMap<VertexId, [bool; 2], FxBuild> = HashMap::default();
@@ -1692,20 +1700,9 @@ impl MtCutter {
         // face opposite corner `i`, as `TET_FACES` lists them), from one look-up per
         // corner instead of three per face.
         let crack_faces = |t: &Tet| -> u8 {
-            let (mut cut, mut on) = (0u8, 0u8);
-            for (j, &v) in t.iter().enumerate() {
-                if is_cut_vertex(v) {
-                    cut |= 1 << j;
-                    on |= 1 << j;
-                } else if out_vertices.binary_search(&v).is_ok() {
-                    on |= 1 << j;
-                }
-            }
+            let marks = t.map(crack_mark);
             (0..4)
-                .filter(|&i| {
-                    let face = 0b1111 & !(1u8 << i);
-                    on & face == face && cut & face != 0
-                })
+                .filter(|&i| marks_on_crack(TET_FACES[i].map(|j| marks[j])))
                 .fold(0, |m, i| m | 1 << i)
         };
         let touched_crack: Vec<u8> = touched
