@@ -805,8 +805,9 @@ impl Merge {
             _ => (na, false),
         };
         let (first, end) = (starts[a], if same { starts[a + 1] } else { starts[a] });
+        // (`max`, `min`: no panic, as `clamp` would on ranges out of order.)
         let q = if (t as usize) < sorted_end {
-            t.clamp(first, end)
+            t.max(first).min(end)
         } else {
             end
         };
