@@ -630,6 +630,26 @@ fn arc_of(creator: FragmentId, destroyer: FragmentId) -> u64 {
     (creator.0 as u64) << 32 | destroyer.0 as u64
 }
 
+/// Whether `starts` can be the ranges of `dag`'s arcs over a pool whose first `sorted`
+/// tets are in arc order (one more than the arcs, the last at `sorted`).
+fn ranges_fit(dag: &KnownDag, starts: &[u32], sorted: usize) -> bool {
+    let na = dag.arc_destroyer.len();
+    starts.len() == na + 1 && starts[na] as usize == sorted
+}
+
+/// The arc of `dag` from fragment `creator` to `destroyer`, or where it would be: the first
+/// arc not before it in (creator, destroyer) order, and whether it is that arc.
+fn arc_at(dag: &KnownDag, creator: usize, destroyer: FragmentId) -> (usize, bool) {
+    match dag.out_start.get(creator..creator + 2) {
+        Some(&[lo, hi]) => {
+            let of_c = &dag.arc_destroyer[lo as usize..hi as usize];
+            let i = of_c.partition_point(|&g| g < destroyer);
+            (lo as usize + i, of_c.get(i) == Some(&destroyer))
+        }
+        _ => (dag.arc_destroyer.len(), false),
+    }
+}
+
 /// Moved tets sorted on both cores above this many ([`Merge::plan`]).
 const PARALLEL_SORT: usize = 1 << 16;
 
@@ -685,26 +705,27 @@ impl Merge {
         } else {
             keyed.sort_unstable();
         }
-        // The others, as runs between moved tets.
-        let mut runs: Vec<(u32, u32)> = Vec::new();
-        let mut start = 0u32;
-        for end in by_index.iter().copied().chain(std::iter::once(nt as u32)) {
-            if start < end {
-                runs.push((start, end));
-            }
-            start = end + 1;
-        }
-        debug_assert!(
-            runs.iter()
-                .all(|&(a, b)| (a + 1..b).all(|t| key(t - 1).0 <= key(t).0))
-                && runs.windows(2).all(|w| key(w[0].1 - 1) <= key(w[1].0)),
-            "a tet not listed as relabelled is out of arc order"
-        );
         let moved = by_index.as_slice();
         // Each moved tet goes after the others before it in order: the first of them not
         // before it is found by galloping from where the moved tet before it went, then
         // bisecting (the next run's first tet stands for the moved ones a probe lands on).
+        // Debug builds run it always (see below), so check the others' order here.
         let searched = || -> Vec<u32> {
+            // The others, as runs between moved tets.
+            let mut runs: Vec<(u32, u32)> = Vec::new();
+            let mut start = 0u32;
+            for end in moved.iter().copied().chain(std::iter::once(nt as u32)) {
+                if start < end {
+                    runs.push((start, end));
+                }
+                start = end + 1;
+            }
+            debug_assert!(
+                runs.iter()
+                    .all(|&(a, b)| (a + 1..b).all(|t| key(t - 1).0 <= key(t).0))
+                    && runs.windows(2).all(|w| key(w[0].1 - 1) <= key(w[1].0)),
+                "a tet not listed as relabelled is out of arc order"
+            );
             let others_from = |x: (u64, u32), mut lo: u32| -> u32 {
                 let first_at = |i: u32| {
                     let r = runs.partition_point(|&(_, e)| e <= i);
@@ -751,10 +772,7 @@ impl Merge {
         // With the opened MT's arcs, each is placed from them instead: a search among
         // the arcs, where the search above reads the pool (millions of tets on a large
         // MT) at random.
-        let from_arcs = arcs.filter(|(dag, starts)| {
-            let na = dag.arc_destroyer.len();
-            starts.len() == na + 1 && starts[na] as usize == sorted_end
-        });
+        let from_arcs = arcs.filter(|(dag, starts)| ranges_fit(dag, starts, sorted_end));
         let pos: Vec<u32> = match from_arcs {
             Some((dag, starts)) => {
                 // Appended tets of one arc (most moved tets, in runs) go to one place.
@@ -793,17 +811,8 @@ impl Merge {
         sorted_end: usize,
         x: (u64, u32),
     ) -> u32 {
-        let ((key, t), na) = (x, dag.arc_destroyer.len());
-        let (c, d) = ((key >> 32) as usize, FragmentId(key as u32));
-        // The first arc not before `x`'s, and whether it is `x`'s.
-        let (a, same) = match dag.out_start.get(c..c + 2) {
-            Some(&[lo, hi]) => {
-                let of_c = &dag.arc_destroyer[lo as usize..hi as usize];
-                let i = of_c.partition_point(|&g| g < d);
-                (lo as usize + i, of_c.get(i) == Some(&d))
-            }
-            _ => (na, false),
-        };
+        let (key, t) = x;
+        let (a, same) = arc_at(dag, (key >> 32) as usize, FragmentId(key as u32));
         let (first, end) = (starts[a], if same { starts[a + 1] } else { starts[a] });
         // (`max`, `min`: no panic, as `clamp` would on ranges out of order.)
         let q = if (t as usize) < sorted_end {
@@ -828,18 +837,12 @@ impl Merge {
         mut starts: Vec<u32>,
     ) -> Option<Vec<u32>> {
         let na = dag.arc_destroyer.len();
-        let nf = dag.out_start.len() - 1;
-        if starts.len() != na + 1 || starts[na] as usize != opened_sorted {
+        if !ranges_fit(dag, &starts, opened_sorted) {
             return None;
         }
         let arc_of = |t: u32| -> Option<u32> {
-            let (c, d) = (creator[t as usize].idx(), destroyer[t as usize]);
-            if c >= nf {
-                return None;
-            }
-            let (a, b) = (dag.out_start[c] as usize, dag.out_start[c + 1] as usize);
-            let i = dag.arc_destroyer[a..b].binary_search(&d).ok()?;
-            Some((a + i) as u32)
+            let (a, same) = arc_at(dag, creator[t as usize].idx(), destroyer[t as usize]);
+            same.then_some(a as u32)
         };
         // Per arc, tets in (+1: moved there) and out (-1: moved from there, when it was
         // in the opened pool), by arc: the moved tets in their final order are in arc
