@@ -131,7 +131,7 @@ use super::report::CutStats;
 use crate::geom::{Aabb, CutPolygon, DVec3, PLANE_SNAP, PolygonError, snap_to_plane};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::{Tet, TetMesh, VertexId};
-use crate::mt::{ExtractError, ExtractOptions, Mt};
+use crate::mt::{ExtractError, ExtractOptions, Extraction, Mt};
 use std::collections::{HashMap, VecDeque};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -699,46 +699,28 @@ impl LiveMt {
     /// False (ids unchanged) when the current mesh does not map back exactly.
     fn resolve(&mut self) -> Result<bool, LiveError> {
         let e = self.cutter.mt().extract(&self.resolution)?;
-        let tets = self.current.mesh().tets();
-        if e.mesh.nb_tets() != tets.len() {
+        if e.mesh.nb_tets() != self.current.mesh().nb_tets() {
             return Ok(false);
         }
-        let bits = |p: DVec3| p.to_array().map(f64::to_bits);
-        let key = |ps: [DVec3; 4]| {
-            let mut k = ps.map(bits);
-            k.sort_unstable();
-            k
+        let (tets, rest) = (self.current.mesh().tets(), &self.rest[..]);
+        let by_positions = || {
+            let all = vec![VertexId::INVALID; rest.len()];
+            resolve_by_positions(tets, rest, &e, 0..tets.len(), 0..tets.len(), all)
         };
-        let at = e.mesh.positions();
-        let by_key: HashMap<[[u64; 3]; 4], usize, FxBuild> = e
-            .mesh
-            .tets()
-            .iter()
-            .enumerate()
-            .map(|(i, t)| (key(t.map(|v| at[v.idx()])), i))
-            .collect();
-        let mut ids = vec![VertexId::INVALID; self.rest.len()];
-        for tet in tets {
-            let Some(&found) = by_key.get(&key(tet.map(|v| self.rest[v.idx()]))) else {
-                return Ok(false);
-            };
-            let found = e.mesh.tets()[found];
-            for &v in tet {
-                let Some(&w) = found.iter().find(|w| at[w.idx()] == self.rest[v.idx()]) else {
-                    return Ok(false);
-                };
-                let (id, w) = (&mut ids[v.idx()], e.vertex_ids[w.idx()]);
-                if id.is_valid() && *id != w {
-                    return Ok(false);
-                }
-                *id = w;
+        let ids = match resolve_by_ids(tets, rest, &self.mt_vertex, &e) {
+            Some(ids) => {
+                debug_assert_eq!(Some(&ids), by_positions().as_ref());
+                Some(ids)
             }
-        }
-        if ids.iter().any(|v| !v.is_valid()) {
-            return Ok(false);
-        }
-        self.mt_vertex = ids;
-        Ok(true)
+            None => by_positions(),
+        };
+        Ok(match ids {
+            Some(ids) => {
+                self.mt_vertex = ids;
+                true
+            }
+            None => false,
+        })
     }
 
     /// Replaces the current mesh by the MT's extraction at the current resolution, each
@@ -793,6 +775,105 @@ impl LiveMt {
         self.epoch += 1;
         Ok(())
     }
+}
+
+/// The bits of a tet's rest positions, sorted: the key [`LiveMt::resolve`] matches tets by.
+fn position_key(ps: [DVec3; 4]) -> [[u64; 3]; 4] {
+    let mut k = ps.map(|p| p.to_array().map(f64::to_bits));
+    k.sort_unstable();
+    k
+}
+
+/// The sorted MT vertices of a tet, packed into one word.
+fn id_key(ids: [VertexId; 4]) -> u128 {
+    let mut k = ids.map(|v| v.idx() as u32);
+    k.sort_unstable();
+    k.iter().fold(0, |acc, &v| acc << 32 | u128::from(v))
+}
+
+/// [`LiveMt::resolve`]'s matching, from what the current mesh already knows: tets whose
+/// vertices all have MT vertices (all but those a cut made since the last match) are
+/// matched by those, their rest positions compared bit for bit; only the others, with the
+/// extraction's tets left over, by rest positions ([`resolve_by_positions`]). What it
+/// returns is what matching every tet by positions gives (the same tets, every one of
+/// their positions equal, so the same vertices); None where it cannot tell (a cut that
+/// gave a known vertex's tets another MT vertex), for matching by positions to decide.
+fn resolve_by_ids(
+    tets: &[Tet],
+    rest: &[DVec3],
+    mt_vertex: &[VertexId],
+    e: &Extraction,
+) -> Option<Vec<VertexId>> {
+    let at = e.mesh.positions();
+    let by_ids: HashMap<u128, usize, FxBuild> = e
+        .mesh
+        .tets()
+        .iter()
+        .enumerate()
+        .map(|(i, t)| (id_key(t.map(|w| e.vertex_ids[w.idx()])), i))
+        .collect();
+    if by_ids.len() != e.mesh.nb_tets() {
+        return None;
+    }
+    let mut ids = vec![VertexId::INVALID; rest.len()];
+    let mut used = vec![false; e.mesh.nb_tets()];
+    let mut left: Vec<usize> = Vec::new();
+    for (k, tet) in tets.iter().enumerate() {
+        let known = tet.map(|v| mt_vertex[v.idx()]);
+        if known.iter().any(|v| !v.is_valid()) {
+            left.push(k);
+            continue;
+        }
+        let &found = by_ids.get(&id_key(known))?;
+        if std::mem::replace(&mut used[found], true) {
+            return None;
+        }
+        let found = e.mesh.tets()[found];
+        for (&v, &m) in tet.iter().zip(&known) {
+            let w = found.iter().find(|w| e.vertex_ids[w.idx()] == m)?;
+            if at[w.idx()].to_array().map(f64::to_bits)
+                != rest[v.idx()].to_array().map(f64::to_bits)
+            {
+                return None;
+            }
+            ids[v.idx()] = m;
+        }
+    }
+    if used.iter().filter(|u| !**u).count() != left.len() {
+        return None;
+    }
+    let unused = (0..used.len()).filter(|&i| !used[i]);
+    resolve_by_positions(tets, rest, e, left.into_iter(), unused, ids)
+}
+
+/// [`LiveMt::resolve`]'s matching by rest positions, of the `current` tets among the
+/// `extracted` ones, `ids` holding the vertices matched so far.
+fn resolve_by_positions(
+    tets: &[Tet],
+    rest: &[DVec3],
+    e: &Extraction,
+    current: impl Iterator<Item = usize>,
+    extracted: impl Iterator<Item = usize>,
+    mut ids: Vec<VertexId>,
+) -> Option<Vec<VertexId>> {
+    let at = e.mesh.positions();
+    let by_key: HashMap<[[u64; 3]; 4], usize, FxBuild> = extracted
+        .map(|i| (position_key(e.mesh.tets()[i].map(|v| at[v.idx()])), i))
+        .collect();
+    for k in current {
+        let tet = tets[k];
+        let &found = by_key.get(&position_key(tet.map(|v| rest[v.idx()])))?;
+        let found = e.mesh.tets()[found];
+        for &v in &tet {
+            let w = found.iter().find(|w| at[w.idx()] == rest[v.idx()])?;
+            let (id, w) = (&mut ids[v.idx()], e.vertex_ids[w.idx()]);
+            if id.is_valid() && *id != w {
+                return None;
+            }
+            *id = w;
+        }
+    }
+    ids.iter().all(|v| v.is_valid()).then_some(ids)
 }
 
 /// The MT cut at rest by `polygon` that a fold falls back to, given back (as a refused cut)
@@ -1041,5 +1122,74 @@ impl<'a> Locator<'a> {
             .map(|k| (current[tet[k].idx()] - self.rest[tet[k].idx()]) * (w[k] / sum))
             .sum();
         p + shift
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mt::BuildOptions;
+
+    /// Matching by MT vertices gives what matching by positions gives, and leaves to it a
+    /// current mesh whose known vertices do not name the MT vertices of its tets.
+    #[test]
+    fn matching_by_ids_agrees_with_matching_by_positions() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/pinion-coarse.node");
+        let (mesh, _) = crate::io::read_mesh(path).expect("pinion-coarse");
+        let (mt, _) = Mt::build(&mesh, &BuildOptions::DEFAULT).expect("MT");
+        let mut live = LiveMt::new(mt, &ExtractOptions::FINEST, MtCutter::DEFAULT_OPTIONS)
+            .expect("live model");
+        let b = live.mesh().bbox();
+        let (c, d) = (b.center(), b.max - b.min);
+        let p = |x: f64, y: f64| DVec3::new(c.x + x * d.x, c.y + y * d.y, c.z + 0.013 * d.z);
+        let square = [p(-0.3, -0.3), p(0.3, -0.3), p(0.3, 0.3), p(-0.3, 0.3)];
+        let cut = live
+            .cut(&CutPolygon::new(&square).expect("square"))
+            .expect("cut");
+        assert!(
+            cut.stats.vertex_copies + cut.stats.vertices_added > 0,
+            "nothing cut"
+        );
+        let new = live.mt_vertex.iter().filter(|v| !v.is_valid()).count();
+        assert!(new > 0, "the cut made no current vertex");
+        live.process_pending(PendingBudget::All).expect("pending");
+        let matched = live.mt_vertex.clone();
+        assert!(matched.iter().all(|v| v.is_valid()));
+
+        let e = live.mt().extract(&ExtractOptions::FINEST).expect("extract");
+        let tets = &live.mesh().tets().to_vec()[..];
+        let all = || vec![VertexId::INVALID; live.rest.len()];
+        let n = tets.len();
+        let by_positions = resolve_by_positions(tets, &live.rest, &e, 0..n, 0..n, all());
+        assert_eq!(by_positions.as_ref(), Some(&matched));
+        // The cut's vertices forgotten: matched again, by ids and positions together.
+        let mut known = matched.clone();
+        for v in known.iter_mut().skip(live.rest.len() - new) {
+            *v = VertexId::INVALID;
+        }
+        assert_eq!(
+            resolve_by_ids(tets, &live.rest, &known, &e).as_ref(),
+            Some(&matched)
+        );
+        // Two vertices the cut did not make swapped, of one tet (its key unchanged, its
+        // positions not), or of two tets apart (keys the extraction does not have): not
+        // matched by ids; matched by positions again.
+        let old = live.rest.len() - new;
+        let t = *tets
+            .iter()
+            .find(|t| t.iter().all(|v| v.idx() < old))
+            .expect("uncut");
+        let apart = tets
+            .iter()
+            .find(|u| u.iter().all(|v| v.idx() < old && !t.contains(v)))
+            .expect("an uncut tet apart");
+        for (i, j) in [(t[0], t[1]), (t[0], apart[0])] {
+            let mut swapped = matched.clone();
+            swapped.swap(i.idx(), j.idx());
+            assert_eq!(resolve_by_ids(tets, &live.rest, &swapped, &e), None);
+            live.mt_vertex = swapped;
+            assert!(live.resolve().expect("resolve"));
+            assert_eq!(live.mt_vertex, matched);
+        }
     }
 }
