@@ -131,7 +131,7 @@ use super::report::CutStats;
 use crate::geom::{Aabb, CutPolygon, DVec3, PLANE_SNAP, PolygonError, snap_to_plane};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::{Tet, TetMesh, VertexId};
-use crate::mt::{ExtractError, ExtractOptions, Extraction, Mt};
+use crate::mt::{ExtractError, ExtractOptions, Mt};
 use std::collections::{HashMap, VecDeque};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -698,16 +698,19 @@ impl LiveMt {
     /// current vertex then being the extraction's vertex at its place in the matched tets.
     /// False (ids unchanged) when the current mesh does not map back exactly.
     fn resolve(&mut self) -> Result<bool, LiveError> {
-        let e = self.cutter.mt().extract(&self.resolution)?;
-        if e.mesh.nb_tets() != self.current.mesh().nb_tets() {
+        let mt = self.cutter.mt();
+        let extracted = mt.extract_tets(&self.resolution)?;
+        let (tets, rest) = (self.current.mesh().tets(), &self.rest[..]);
+        if extracted.len() != tets.len() {
             return Ok(false);
         }
-        let (tets, rest) = (self.current.mesh().tets(), &self.rest[..]);
+        let at = mt.positions();
         let by_positions = || {
             let all = vec![VertexId::INVALID; rest.len()];
-            resolve_by_positions(tets, rest, &e, 0..tets.len(), 0..tets.len(), all)
+            let n = tets.len();
+            resolve_by_positions(tets, rest, &extracted, at, 0..n, 0..n, all)
         };
-        let ids = match resolve_by_ids(tets, rest, &self.mt_vertex, &e) {
+        let ids = match resolve_by_ids(tets, rest, &self.mt_vertex, &extracted, at) {
             Some(ids) => {
                 debug_assert_eq!(Some(&ids), by_positions().as_ref());
                 Some(ids)
@@ -784,56 +787,75 @@ fn position_key(ps: [DVec3; 4]) -> [[u64; 3]; 4] {
     k
 }
 
-/// The sorted MT vertices of a tet, packed into one word.
-fn id_key(ids: [VertexId; 4]) -> u128 {
-    let mut k = ids.map(|v| v.idx() as u32);
-    k.sort_unstable();
-    k.iter().fold(0, |acc, &v| acc << 32 | u128::from(v))
-}
-
 /// [`LiveMt::resolve`]'s matching, from what the current mesh already knows: tets whose
 /// vertices all have MT vertices (all but those a cut made since the last match) are
 /// matched by those, their rest positions compared bit for bit; only the others, with the
-/// extraction's tets left over, by rest positions ([`resolve_by_positions`]). What it
-/// returns is what matching every tet by positions gives (the same tets, every one of
-/// their positions equal, so the same vertices); None where it cannot tell (a cut that
-/// gave a known vertex's tets another MT vertex), for matching by positions to decide.
+/// `extracted` tets left over (pool tets, by MT vertex, at positions `at`), by rest
+/// positions ([`resolve_by_positions`]). What it returns is what matching every tet by
+/// positions gives (the same tets, every one of their positions equal, so the same
+/// vertices); None where it cannot tell (a cut that gave a known vertex's tets another MT
+/// vertex), for matching by positions to decide. The extracted tets are bucketed by their
+/// first current vertex, not hashed: a table as large as the mesh, filled at random, cost
+/// most of the matching.
 fn resolve_by_ids(
     tets: &[Tet],
     rest: &[DVec3],
     mt_vertex: &[VertexId],
-    e: &Extraction,
+    extracted: &[Tet],
+    at: &[DVec3],
 ) -> Option<Vec<VertexId>> {
-    let at = e.mesh.positions();
-    let by_ids: HashMap<u128, usize, FxBuild> = e
-        .mesh
-        .tets()
-        .iter()
-        .enumerate()
-        .map(|(i, t)| (id_key(t.map(|w| e.vertex_ids[w.idx()])), i))
-        .collect();
-    if by_ids.len() != e.mesh.nb_tets() {
-        return None;
+    const UNKNOWN: u32 = u32::MAX;
+    // The current vertex of each MT vertex the current mesh knows.
+    let mut current_of = vec![UNKNOWN; at.len()];
+    for (v, m) in mt_vertex.iter().enumerate() {
+        if m.is_valid() && std::mem::replace(current_of.get_mut(m.idx())?, v as u32) != UNKNOWN {
+            return None;
+        }
     }
+    // Each extracted tet by the current vertices of its MT vertices, sorted (UNKNOWN
+    // last), and the extracted tets of known vertices listed by their first one.
+    let keys: Vec<[u32; 4]> = extracted
+        .iter()
+        .map(|t| {
+            let mut k = t.map(|m| current_of[m.idx()]);
+            k.sort_unstable();
+            k
+        })
+        .collect();
+    let mut start = vec![0u32; rest.len() + 2];
+    for k in keys.iter().filter(|k| k[3] != UNKNOWN) {
+        start[k[0] as usize + 2] += 1;
+    }
+    for i in 2..start.len() {
+        start[i] += start[i - 1];
+    }
+    let mut listed = vec![0u32; start[rest.len() + 1] as usize];
+    for (i, k) in keys.iter().enumerate().filter(|(_, k)| k[3] != UNKNOWN) {
+        let next = &mut start[k[0] as usize + 1];
+        listed[*next as usize] = i as u32;
+        *next += 1;
+    }
+    // Now listed[start[v]..start[v + 1]] are the extracted tets whose first vertex is v.
+    let bits = |p: DVec3| p.to_array().map(f64::to_bits);
     let mut ids = vec![VertexId::INVALID; rest.len()];
-    let mut used = vec![false; e.mesh.nb_tets()];
+    let mut used = vec![false; extracted.len()];
     let mut left: Vec<usize> = Vec::new();
     for (k, tet) in tets.iter().enumerate() {
-        let known = tet.map(|v| mt_vertex[v.idx()]);
-        if known.iter().any(|v| !v.is_valid()) {
+        if tet.iter().any(|v| !mt_vertex[v.idx()].is_valid()) {
             left.push(k);
             continue;
         }
-        let &found = by_ids.get(&id_key(known))?;
-        if std::mem::replace(&mut used[found], true) {
+        let mut key = tet.map(|v| v.0);
+        key.sort_unstable();
+        let first = key[0] as usize;
+        let bucket = &listed[start[first] as usize..start[first + 1] as usize];
+        let &found = bucket.iter().find(|&&i| keys[i as usize] == key)?;
+        if std::mem::replace(&mut used[found as usize], true) {
             return None;
         }
-        let found = e.mesh.tets()[found];
-        for (&v, &m) in tet.iter().zip(&known) {
-            let w = found.iter().find(|w| e.vertex_ids[w.idx()] == m)?;
-            if at[w.idx()].to_array().map(f64::to_bits)
-                != rest[v.idx()].to_array().map(f64::to_bits)
-            {
+        for &v in tet {
+            let m = mt_vertex[v.idx()];
+            if bits(at[m.idx()]) != bits(rest[v.idx()]) {
                 return None;
             }
             ids[v.idx()] = m;
@@ -843,34 +865,35 @@ fn resolve_by_ids(
         return None;
     }
     let unused = (0..used.len()).filter(|&i| !used[i]);
-    resolve_by_positions(tets, rest, e, left.into_iter(), unused, ids)
+    resolve_by_positions(tets, rest, extracted, at, left.into_iter(), unused, ids)
 }
 
 /// [`LiveMt::resolve`]'s matching by rest positions, of the `current` tets among the
-/// `extracted` ones, `ids` holding the vertices matched so far.
+/// `extracted` ones listed (pool tets, by MT vertex, at positions `at`), `ids` holding the
+/// vertices matched so far.
 fn resolve_by_positions(
     tets: &[Tet],
     rest: &[DVec3],
-    e: &Extraction,
+    extracted: &[Tet],
+    at: &[DVec3],
     current: impl Iterator<Item = usize>,
-    extracted: impl Iterator<Item = usize>,
+    listed: impl Iterator<Item = usize>,
     mut ids: Vec<VertexId>,
 ) -> Option<Vec<VertexId>> {
-    let at = e.mesh.positions();
-    let by_key: HashMap<[[u64; 3]; 4], usize, FxBuild> = extracted
-        .map(|i| (position_key(e.mesh.tets()[i].map(|v| at[v.idx()])), i))
+    let by_key: HashMap<[[u64; 3]; 4], usize, FxBuild> = listed
+        .map(|i| (position_key(extracted[i].map(|m| at[m.idx()])), i))
         .collect();
     for k in current {
         let tet = tets[k];
         let &found = by_key.get(&position_key(tet.map(|v| rest[v.idx()])))?;
-        let found = e.mesh.tets()[found];
+        let found = extracted[found];
         for &v in &tet {
-            let w = found.iter().find(|w| at[w.idx()] == rest[v.idx()])?;
-            let (id, w) = (&mut ids[v.idx()], e.vertex_ids[w.idx()]);
-            if id.is_valid() && *id != w {
+            let &m = found.iter().find(|m| at[m.idx()] == rest[v.idx()])?;
+            let id = &mut ids[v.idx()];
+            if id.is_valid() && *id != m {
                 return None;
             }
-            *id = w;
+            *id = m;
         }
     }
     ids.iter().all(|v| v.is_valid()).then_some(ids)
@@ -1156,11 +1179,15 @@ mod tests {
         let matched = live.mt_vertex.clone();
         assert!(matched.iter().all(|v| v.is_valid()));
 
-        let e = live.mt().extract(&ExtractOptions::FINEST).expect("extract");
+        let e = live
+            .mt()
+            .extract_tets(&ExtractOptions::FINEST)
+            .expect("extract");
+        let at = &live.mt().positions().to_vec()[..];
         let tets = &live.mesh().tets().to_vec()[..];
         let all = || vec![VertexId::INVALID; live.rest.len()];
         let n = tets.len();
-        let by_positions = resolve_by_positions(tets, &live.rest, &e, 0..n, 0..n, all());
+        let by_positions = resolve_by_positions(tets, &live.rest, &e, at, 0..n, 0..n, all());
         assert_eq!(by_positions.as_ref(), Some(&matched));
         // The cut's vertices forgotten: matched again, by ids and positions together.
         let mut known = matched.clone();
@@ -1168,7 +1195,7 @@ mod tests {
             *v = VertexId::INVALID;
         }
         assert_eq!(
-            resolve_by_ids(tets, &live.rest, &known, &e).as_ref(),
+            resolve_by_ids(tets, &live.rest, &known, &e, at).as_ref(),
             Some(&matched)
         );
         // Two vertices the cut did not make swapped, of one tet (its key unchanged, its
@@ -1186,7 +1213,7 @@ mod tests {
         for (i, j) in [(t[0], t[1]), (t[0], apart[0])] {
             let mut swapped = matched.clone();
             swapped.swap(i.idx(), j.idx());
-            assert_eq!(resolve_by_ids(tets, &live.rest, &swapped, &e), None);
+            assert_eq!(resolve_by_ids(tets, &live.rest, &swapped, &e, at), None);
             live.mt_vertex = swapped;
             assert!(live.resolve().expect("resolve"));
             assert_eq!(live.mt_vertex, matched);

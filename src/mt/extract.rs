@@ -199,6 +199,15 @@ impl Mt {
         Ok(e)
     }
 
+    /// The pool tets of the mesh [`extract`](Self::extract) gives (its tets in the same
+    /// order, by MT vertex), without assembling that mesh.
+    pub(crate) fn extract_tets(&self, options: &ExtractOptions) -> Result<Vec<Tet>, ExtractError> {
+        options.check()?;
+        let (refined, _) = self.refined_set(options);
+        let (tet_ids, _) = self.frontier_tets(&refined);
+        Ok(tet_ids.iter().map(|t| self.tets[t.idx()]).collect())
+    }
+
     /// Whether fragment `f` wants refinement under `options` (before closure).
     #[inline]
     pub(crate) fn wants_refinement(&self, f: usize, options: &ExtractOptions) -> bool {
