@@ -1036,7 +1036,16 @@ struct Locator<'a> {
     cell: f64,
     dims: [usize; 3],
     cells: Vec<Vec<u32>>,
+    /// Each tet's box at rest.
+    boxes: Vec<Aabb>,
+    /// Each tet's first vertex at rest, and the rows that give the barycentric coordinates
+    /// of its other three from a point's offset to it ([`Locator::barycentric`]).
+    frames: Vec<[DVec3; 4]>,
 }
+
+/// Barycentric coordinates all above this: the tet holds the point well inside, and
+/// [`Locator::map`] takes it without looking further.
+const SURELY_INSIDE: f64 = 1e-6;
 
 impl<'a> Locator<'a> {
     fn new(rest: &'a [DVec3], tets: &'a [Tet]) -> Locator<'a> {
@@ -1060,10 +1069,25 @@ impl<'a> Locator<'a> {
             cell,
             dims,
             cells: Vec::new(),
+            boxes: Vec::with_capacity(tets.len()),
+            frames: Vec::with_capacity(tets.len()),
         };
         for (i, t) in tets.iter().enumerate() {
-            let b = Aabb::from_points(t.iter().map(|v| &rest[v.idx()]));
-            let (lo, hi) = (loc.cell_of(b.min), loc.cell_of(b.max));
+            let bx = Aabb::from_points(t.iter().map(|v| &rest[v.idx()]));
+            loc.boxes.push(bx);
+            // The coordinate of vertex k is the volume of the tet with the point in its
+            // place over the tet's: for k = 1, 2, 3 the offset dotted with a cross product
+            // of two edges from the first vertex, over that volume.
+            let [a, b, c, d] = t.map(|v| rest[v.idx()]);
+            let (ab, ac, ad) = (b - a, c - a, d - a);
+            let total = ab.dot(ac.cross(ad));
+            loc.frames.push([
+                a,
+                ac.cross(ad) / total,
+                ad.cross(ab) / total,
+                ab.cross(ac) / total,
+            ]);
+            let (lo, hi) = (loc.cell_of(bx.min), loc.cell_of(bx.max));
             for z in lo[2]..=hi[2] {
                 for y in lo[1]..=hi[1] {
                     for x in lo[0]..=hi[0] {
@@ -1087,20 +1111,32 @@ impl<'a> Locator<'a> {
 
     /// Barycentric coordinates of `p` in tet `t` at rest.
     fn barycentric(&self, t: usize, p: DVec3) -> [f64; 4] {
-        let [a, b, c, d] = self.tets[t].map(|v| self.rest[v.idx()]);
-        let vol = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| (b - a).dot((c - a).cross(d - a));
-        let total = vol(a, b, c, d);
-        [
-            vol(p, b, c, d) / total,
-            vol(a, p, c, d) / total,
-            vol(a, b, p, d) / total,
-            vol(a, b, c, p) / total,
-        ]
+        let [a, r1, r2, r3] = self.frames[t];
+        let o = p - a;
+        let w = [r1.dot(o), r2.dot(o), r3.dot(o)];
+        [1.0 - (w[0] + w[1] + w[2]), w[0], w[1], w[2]]
     }
 
     /// `p` (at rest) mapped to `current` positions.
     fn map(&self, p: DVec3, current: &[DVec3]) -> DVec3 {
         let home = self.cell_of(p);
+        // Most points lie well inside one tet of their cell: the first such tet, among
+        // those whose box holds the point, is taken. The search below (for points near a
+        // face, or outside every tet) computes the coordinates of every tet of the cell
+        // to take the one holding the point furthest inside, which cost most of placing a
+        // deformed body's pool; the two take the same tet but where rounding makes a
+        // sliver seem to hold a point another tet holds.
+        let inside = self.cells[self.index(home)].iter().find(|&&t| {
+            self.boxes[t as usize].contains(p)
+                && self
+                    .barycentric(t as usize, p)
+                    .into_iter()
+                    .fold(f64::INFINITY, f64::min)
+                    > SURELY_INSIDE
+        });
+        if let Some(&t) = inside {
+            return self.shifted(t as usize, p, current);
+        }
         let mut best: Option<(f64, usize)> = None;
         let reach = self.dims.iter().copied().max().unwrap_or(1);
         for r in 0..=reach {
@@ -1131,9 +1167,14 @@ impl<'a> Locator<'a> {
                 break;
             }
         }
-        let Some((_, t)) = best else {
-            return p;
-        };
+        match best {
+            Some((_, t)) => self.shifted(t, p, current),
+            None => p,
+        }
+    }
+
+    /// `p` moved by the displacement of tet `t` there.
+    fn shifted(&self, t: usize, p: DVec3, current: &[DVec3]) -> DVec3 {
         // Displacement interpolated at the point of the tet nearest `p` (barycentric
         // coordinates clamped): inside the tet the tet's affine map, outside it a
         // translation continuing the boundary's, which folds far fewer tets reaching out of
