@@ -7,9 +7,11 @@
 //!   blade crosses in [`TC_STEPS`] steps (about 100 current tets cut per step). Each step's
 //!   frontier-first cut ([`LiveMt::cut`]) is timed, then the queued MT cut
 //!   ([`LiveMt::process_pending`]), reported per fragment it involved. Once at rest, once
-//!   with the body bent under the same blade (positions set before the sweep), and once at
-//!   rest with the queue processed only after the last step (`at_rest_queued`: no model
-//!   cut between steps to empty the caches).
+//!   with the body bent under the same blade (positions set before the sweep), once moving
+//!   (positions set before every step, as a simulation's frame does: a rotation and a
+//!   scaling that change from step to step, setting them timed apart), and once at rest
+//!   with the queue processed only after the last step (`at_rest_queued`: no model cut
+//!   between steps to empty the caches).
 //! * `direct`: [`Scalpel`], every level of the MT cut at each of 100 steps (the paper's
 //!   non-time-critical update, the baseline).
 //!
@@ -43,9 +45,11 @@ fn main() {
     let c = b.center();
     let direct_blades = blade_at(&mesh, STEPS);
     let blade = |k: usize| direct_blades[k];
-    let live_at_rest = time_critical(&mt, &blade_at(&mesh, TC_STEPS), false, true);
-    let live_bent = time_critical(&mt, &blade_at(&mesh, TC_STEPS), true, true);
-    let live_queued = time_critical(&mt, &blade_at(&mesh, TC_STEPS), false, false);
+    let blades = blade_at(&mesh, TC_STEPS);
+    let live_at_rest = time_critical(&mt, &blades, Body::Rest, true);
+    let live_bent = time_critical(&mt, &blades, Body::Bent, true);
+    let live_moving = time_critical(&mt, &blades, Body::Moving, true);
+    let live_queued = time_critical(&mt, &blades, Body::Rest, false);
     let mut scalpel = Scalpel::new(mt, blade(0)).expect("scalpel");
     let mut ms: Vec<f64> = Vec::new();
     let mut cells: Vec<usize> = Vec::new();
@@ -114,6 +118,7 @@ fn main() {
         "time_critical": {
             "at_rest": tc(&live_at_rest),
             "bent": tc(&live_bent),
+            "moving": tc(&live_moving),
             "at_rest_queued": tc(&live_queued),
         },
         "direct": json!({
@@ -153,7 +158,17 @@ fn blade_at(mesh: &mtcut::mesh::TetMesh, steps: usize) -> Vec<Blade> {
 
 /// The time-critical sweep (see the module docs): per step the frontier-first latency,
 /// then the queued work per fragment.
-fn time_critical(mt: &Mt, blades: &[Blade], bent: bool, drain_each_step: bool) -> Value {
+/// How the body lies while the blade crosses it.
+#[derive(Clone, Copy, PartialEq)]
+enum Body {
+    Rest,
+    /// Bent once, before the sweep.
+    Bent,
+    /// Moved before every step.
+    Moving,
+}
+
+fn time_critical(mt: &Mt, blades: &[Blade], body: Body, drain_each_step: bool) -> Value {
     let mut errors: Vec<f64> = (0..mt.nb_fragments())
         .map(|f| mt.fragment_error(mtcut::mesh::FragmentId::from_usize(f)))
         .filter(|e| e.is_finite() && *e > 0.0)
@@ -162,7 +177,7 @@ fn time_critical(mt: &Mt, blades: &[Blade], bent: bool, drain_each_step: bool) -
     let resolution = ExtractOptions::threshold(errors[errors.len() / 2]);
     let mut live = LiveMt::new(mt.clone(), &resolution, Scalpel::OPTIONS).expect("live model");
     let current_tets = live.mesh().nb_tets();
-    if bent {
+    if body == Body::Bent {
         // A bend of 0.5% of the diagonal (no tet inverted) under the same blade.
         let b = live.mesh().bbox();
         let diag = (b.max - b.min).length();
@@ -180,6 +195,17 @@ fn time_critical(mt: &Mt, blades: &[Blade], bent: bool, drain_each_step: bool) -
     let (mut step_ms, mut cells) = (Vec::new(), Vec::new());
     let (mut pending_ms, mut fragments, mut remeshed) = (0.0, 0usize, 0usize);
     let mut per_fragment_us: Vec<f64> = Vec::new();
+    let mut set_ms: Vec<f64> = Vec::new();
+    // A small rotation about the vertical axis and a scaling about the body's centre,
+    // changing from step to step (affine: no tet inverted).
+    let center = live.mesh().bbox().center();
+    let motion = |k: usize, p: DVec3| {
+        let (turn, scale) = (0.002 * (k % 7) as f64, 1.0 + 0.001 * (k % 5) as f64);
+        let d = p - center;
+        let (sin, cos) = turn.sin_cos();
+        center + DVec3::new(cos * d.x - sin * d.y, sin * d.x + cos * d.y, d.z) * scale
+    };
+    let mut frame = 0;
     // The queued work, timed per fragment it involves.
     let mut drain = |live: &mut LiveMt| {
         let t = Instant::now();
@@ -194,6 +220,17 @@ fn time_critical(mt: &Mt, blades: &[Blade], bent: bool, drain_each_step: bool) -
     };
     for w in blades.windows(2) {
         for polygon in scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).expect("sweep") {
+            if body == Body::Moving {
+                frame += 1;
+                let moved: Vec<DVec3> = live
+                    .rest_positions()
+                    .iter()
+                    .map(|&p| motion(frame, p))
+                    .collect();
+                let t = Instant::now();
+                live.set_positions(&moved).expect("move");
+                set_ms.push(t.elapsed().as_secs_f64() * 1e3);
+            }
             let t = Instant::now();
             let cut = live.cut(&polygon).expect("frontier-first cut");
             let ms = t.elapsed().as_secs_f64() * 1e3;
@@ -214,6 +251,7 @@ fn time_critical(mt: &Mt, blades: &[Blade], bent: bool, drain_each_step: bool) -
     };
     let (step_ms, cells, per_fragment_us) =
         (sorted(step_ms), sorted(cells), sorted(per_fragment_us));
+    let set_ms = sorted(set_ms);
     json!({
         "steps": blades.len() - 1,
         "steps_cutting": step_ms.len(),
@@ -226,6 +264,7 @@ fn time_critical(mt: &Mt, blades: &[Blade], bent: bool, drain_each_step: bool) -
         "pending_us_per_fragment_median": percentile(&per_fragment_us, 0.5),
         "pending_us_per_fragment_overall": pending_ms * 1e3 / fragments.max(1) as f64,
         "remeshed_steps": remeshed,
+        "set_positions_ms_median": (!set_ms.is_empty()).then(|| percentile(&set_ms, 0.5)),
         "valid_after_last_step": valid,
         "components_after": live.mt().nb_components(),
     })
