@@ -643,7 +643,7 @@ impl LiveMt {
                 host[v.idx()] = Some(d.current[i]);
             }
         }
-        let locator = Locator::new(&d.rest, &d.tets);
+        let mut locator = Locator::new(&d.rest, &d.tets);
         let mut placed: Vec<DVec3> = host[..self.first_cut_vertex]
             .iter()
             .enumerate()
@@ -737,7 +737,7 @@ impl LiveMt {
                 current.insert(v, self.current.mesh().position(VertexId::from_usize(i)));
             }
         }
-        let locator = Locator::new(&self.rest, self.current.mesh().tets());
+        let mut locator = Locator::new(&self.rest, self.current.mesh().tets());
         let positions: Vec<DVec3> = e
             .vertex_ids
             .iter()
@@ -1035,12 +1035,17 @@ struct Locator<'a> {
     bounds: Aabb,
     cell: f64,
     dims: [usize; 3],
-    cells: Vec<Vec<u32>>,
+    /// The tets of cell `c` are `cells[starts[c]..starts[c + 1]]`.
+    cells: Vec<u32>,
+    starts: Vec<u32>,
     /// Each tet's box at rest.
     boxes: Vec<Aabb>,
     /// Each tet's first vertex at rest, and the rows that give the barycentric coordinates
     /// of its other three from a point's offset to it ([`Locator::barycentric`]).
     frames: Vec<[DVec3; 4]>,
+    /// Per tet, the last search that looked at it ([`Locator::map`]).
+    seen: Vec<u32>,
+    search: u32,
 }
 
 /// Barycentric coordinates all above this: the tet holds the point well inside, and
@@ -1061,7 +1066,6 @@ impl<'a> Locator<'a> {
             .max(glam::UVec3::ONE)
             .to_array();
         let dims = dims.map(|d| d as usize);
-        let mut cells: Vec<Vec<u32>> = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
         let mut loc = Locator {
             rest,
             tets,
@@ -1069,10 +1073,13 @@ impl<'a> Locator<'a> {
             cell,
             dims,
             cells: Vec::new(),
+            starts: vec![0; dims[0] * dims[1] * dims[2] + 2],
             boxes: Vec::with_capacity(tets.len()),
             frames: Vec::with_capacity(tets.len()),
+            seen: vec![0; tets.len()],
+            search: 0,
         };
-        for (i, t) in tets.iter().enumerate() {
+        for t in tets {
             let bx = Aabb::from_points(t.iter().map(|v| &rest[v.idx()]));
             loc.boxes.push(bx);
             // The coordinate of vertex k is the volume of the tet with the point in its
@@ -1087,17 +1094,41 @@ impl<'a> Locator<'a> {
                 ad.cross(ab) / total,
                 ab.cross(ac) / total,
             ]);
-            let (lo, hi) = (loc.cell_of(bx.min), loc.cell_of(bx.max));
-            for z in lo[2]..=hi[2] {
-                for y in lo[1]..=hi[1] {
-                    for x in lo[0]..=hi[0] {
-                        cells[loc.index([x, y, z])].push(i as u32);
-                    }
+            loc.each_cell(&bx, |loc, c| loc.starts[c + 2] += 1);
+        }
+        // The cells' tets listed one cell after another (a list per cell, allocated
+        // apart, took most of the building): counted above, then placed.
+        for c in 2..loc.starts.len() {
+            loc.starts[c] += loc.starts[c - 1];
+        }
+        loc.cells = vec![0; loc.starts[loc.starts.len() - 1] as usize];
+        for t in 0..tets.len() {
+            let bx = loc.boxes[t];
+            loc.each_cell(&bx, |loc, c| {
+                let next = &mut loc.starts[c + 1];
+                loc.cells[*next as usize] = t as u32;
+                *next += 1;
+            });
+        }
+        loc
+    }
+
+    /// Calls `f` with each cell (index) that box `b` overlaps.
+    fn each_cell(&mut self, b: &Aabb, mut f: impl FnMut(&mut Self, usize)) {
+        let (lo, hi) = (self.cell_of(b.min), self.cell_of(b.max));
+        for z in lo[2]..=hi[2] {
+            for y in lo[1]..=hi[1] {
+                for x in lo[0]..=hi[0] {
+                    let c = self.index([x, y, z]);
+                    f(self, c);
                 }
             }
         }
-        loc.cells = cells;
-        loc
+    }
+
+    /// The tets whose boxes overlap cell `c`.
+    fn cell(&self, c: usize) -> &[u32] {
+        &self.cells[self.starts[c] as usize..self.starts[c + 1] as usize]
     }
 
     fn cell_of(&self, p: DVec3) -> [usize; 3] {
@@ -1118,7 +1149,7 @@ impl<'a> Locator<'a> {
     }
 
     /// `p` (at rest) mapped to `current` positions.
-    fn map(&self, p: DVec3, current: &[DVec3]) -> DVec3 {
+    fn map(&mut self, p: DVec3, current: &[DVec3]) -> DVec3 {
         let home = self.cell_of(p);
         // Most points lie well inside one tet of their cell: the first such tet, among
         // those whose box holds the point, is taken. The search below (for points near a
@@ -1126,7 +1157,7 @@ impl<'a> Locator<'a> {
         // to take the one holding the point furthest inside, which cost most of placing a
         // deformed body's pool; the two take the same tet but where rounding makes a
         // sliver seem to hold a point another tet holds.
-        let inside = self.cells[self.index(home)].iter().find(|&&t| {
+        let inside = self.cell(self.index(home)).iter().find(|&&t| {
             self.boxes[t as usize].contains(p)
                 && self
                     .barycentric(t as usize, p)
@@ -1139,6 +1170,14 @@ impl<'a> Locator<'a> {
         }
         let mut best: Option<(f64, usize)> = None;
         let reach = self.dims.iter().copied().max().unwrap_or(1);
+        // A tet in several of the cells searched is looked at once (the first time: the
+        // best is only replaced by a larger value): two looks in three were repeats around
+        // the points outside every tet of a moving fandisk's current mesh.
+        self.search = self.search.wrapping_add(1);
+        if self.search == 0 {
+            self.seen.fill(0);
+            self.search = 1;
+        }
         for r in 0..=reach {
             let lo = home.map(|c| c.saturating_sub(r));
             let hi = [0, 1, 2].map(|k| (home[k] + r).min(self.dims[k] - 1));
@@ -1152,7 +1191,14 @@ impl<'a> Locator<'a> {
                         if !on_shell {
                             continue;
                         }
-                        for &t in &self.cells[self.index([x, y, z])] {
+                        let cell = self.index([x, y, z]);
+                        let [from, to] = [cell, cell + 1].map(|c| self.starts[c] as usize);
+                        for &t in &self.cells[from..to] {
+                            let seen = &mut self.seen[t as usize];
+                            if *seen == self.search {
+                                continue;
+                            }
+                            *seen = self.search;
                             let w = self.barycentric(t as usize, p);
                             let m = w.iter().copied().fold(f64::INFINITY, f64::min);
                             if best.is_none_or(|(b, _)| m > b) {
@@ -1193,6 +1239,69 @@ impl<'a> Locator<'a> {
 mod tests {
     use super::*;
     use crate::mt::BuildOptions;
+
+    /// A point inside the mesh is moved by the tet holding it furthest inside, found
+    /// among all tets; one outside every tet by some tet near it; each tet's coordinates
+    /// as the volumes they are ratios of give them.
+    #[test]
+    fn the_locator_moves_a_point_by_the_tet_holding_it() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/pinion-coarse.node");
+        let (mesh, _) = crate::io::read_mesh(path).expect("pinion-coarse");
+        let (rest, tets) = (mesh.positions(), mesh.tets());
+        let b = mesh.bbox();
+        let (c, d) = (b.center(), b.max - b.min);
+        // An affine motion and a bend: the shift differs from tet to tet.
+        let current: Vec<DVec3> = rest
+            .iter()
+            .map(|&p| {
+                let q = p - c;
+                p + DVec3::new(0.01 * q.y, -0.02 * q.x, 0.03 * q.z) + 0.01 * d * (q.x / d.x).sin()
+            })
+            .collect();
+        let vol = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| (b - a).dot((c - a).cross(d - a));
+        let mut locator = Locator::new(rest, tets);
+        let mut rng = crate::rng::Rng(17);
+        let (mut inside, mut outside) = (0, 0);
+        for _ in 0..4000 {
+            let p = b.min + (b.max - b.min) * DVec3::new(rng.unit(), rng.unit(), rng.unit());
+            let least = |t: &Tet| {
+                let [a, b, c, d] = t.map(|v| rest[v.idx()]);
+                let total = vol(a, b, c, d);
+                let w = [
+                    vol(p, b, c, d),
+                    vol(a, p, c, d),
+                    vol(a, b, p, d),
+                    vol(a, b, c, p),
+                ];
+                w.map(|x| x / total)
+                    .into_iter()
+                    .fold(f64::INFINITY, f64::min)
+            };
+            let (k, m) = (0..tets.len())
+                .map(|k| (k, least(&tets[k])))
+                .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
+            let moved = locator.map(p, &current);
+            if m > 1e-3 {
+                inside += 1;
+                let w = locator.barycentric(k, p);
+                let shift: DVec3 = (0..4)
+                    .map(|j| (current[tets[k][j].idx()] - rest[tets[k][j].idx()]) * w[j])
+                    .sum();
+                assert!((moved - (p + shift)).length() <= 1e-12 * d.length(), "{p}");
+            } else if m < -1e-3 {
+                outside += 1;
+                // Clamped coordinates of a tet near it: a shift within the bodies' shifts.
+                let largest = (0..rest.len())
+                    .map(|v| (current[v] - rest[v]).length())
+                    .fold(0.0, f64::max);
+                assert!((moved - p).length() <= largest * (1.0 + 1e-12), "{p}");
+            }
+        }
+        assert!(
+            inside > 500 && outside > 500,
+            "{inside} inside, {outside} outside"
+        );
+    }
 
     /// Matching by MT vertices gives what matching by positions gives, and leaves to it a
     /// current mesh whose known vertices do not name the MT vertices of its tets.
