@@ -379,10 +379,18 @@ impl Cutter {
     pub fn set_positions(&mut self, positions: &[DVec3]) -> Result<(), CutError> {
         use rayon::prelude::*;
         check_positions(positions, self.mesh.nb_vertices())?;
-        let inverted = self.mesh.tets().par_iter().position_first(|t| {
+        let inverted_tet = |t: &Tet| {
             let [a, b, c, d] = t.map(|v| positions[v.idx()]);
             crate::geom::orient3d(a, b, c, d) != Sign::Positive
-        });
+        };
+        // On one core below `PARALLEL_ORIENT` tets: a moving fandisk's current mesh
+        // (22,690 tets) was checked in 0.38 ms so, in 0.60–0.66 on both.
+        let tets = self.mesh.tets();
+        let inverted = if tets.len() < PARALLEL_ORIENT {
+            tets.iter().position(inverted_tet)
+        } else {
+            tets.par_iter().position_first(inverted_tet)
+        };
         if let Some(tet) = inverted {
             return Err(CutError::InvertedTet { tet });
         }
@@ -1243,6 +1251,9 @@ impl Cutter {
         pockets::centroid_side(mesh.positions(), polygon, tet)
     }
 }
+
+/// Tets from which [`Cutter::set_positions`] checks their orientation on both cores.
+const PARALLEL_ORIENT: usize = 1 << 16;
 
 /// Positions given for `expected` vertices: as many, all finite.
 pub(crate) fn check_positions(positions: &[DVec3], expected: usize) -> Result<(), CutError> {
