@@ -1159,11 +1159,9 @@ impl<'a> Locator<'a> {
         // sliver seem to hold a point another tet holds.
         let inside = self.cell(self.index(home)).iter().find(|&&t| {
             self.boxes[t as usize].contains(p)
-                && self
-                    .barycentric(t as usize, p)
-                    .into_iter()
-                    .fold(f64::INFINITY, f64::min)
-                    > SURELY_INSIDE
+                && (self.barycentric(t as usize, p))
+                    .iter()
+                    .all(|&w| w > SURELY_INSIDE)
         });
         if let Some(&t) = inside {
             return self.shifted(t as usize, p, current);

@@ -910,16 +910,18 @@ impl MtCutter {
         match deformed {
             // The boxes hold at rest. A tet deformed lies in its box at rest grown by the
             // largest displacement of a vertex, so the hierarchy finds it with its boxes
-            // grown so (rounding of the growth covered by `slack`); a pass over every
+            // grown so (and by the rounding of coordinates at rest); a pass over every
             // tet of every fragment took 9 ms of each queued cut of the scalpel bench's
             // bent fandisk, where this finds the same tets (debug builds compare).
             Some(p) => {
+                let at_rest_coord = self.bounds.min.abs().max(self.bounds.max.abs());
                 let reach = p
                     .iter()
                     .zip(mt.positions())
                     .map(|(a, b)| (*a - *b).abs().max_element())
                     .fold(0.0, f64::max)
-                    + slack;
+                    + slack
+                    + 64.0 * f64::EPSILON * at_rest_coord.max_element();
                 let at_rest = |b: &Aabb| {
                     box_meets(&Aabb {
                         min: b.min - DVec3::splat(reach),
