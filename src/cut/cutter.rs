@@ -401,15 +401,21 @@ impl Cutter {
 
     /// Makes room for `tets` more tets and `vertices` more vertices, so that the next cuts
     /// adding up to that many do not reallocate the mesh's arrays (a simulation calls it
-    /// once, sized for the cuts it expects; without it arrays grow by doubling).
+    /// once, sized for the cuts it expects; without it arrays grow by doubling). The room's
+    /// memory is mapped here too (each page written once), so those cuts do not pay for
+    /// page faults either: memory for the room is taken now, not as cuts fill it.
     pub fn reserve(&mut self, tets: usize, vertices: usize) {
-        self.mesh.reserve(tets, vertices);
+        use crate::mesh::touch_spare;
+        self.mesh.reserve_mapped(tets, vertices);
         self.scales.reserve(vertices);
+        touch_spare(&mut self.scales);
         if let Some(roots) = self.roots.as_mut() {
             roots.reserve(vertices);
+            touch_spare(roots);
         }
         if !self.valence.is_empty() {
             self.valence.reserve(vertices);
+            touch_spare(&mut self.valence);
         }
         self.bvh.reserve_tets(self.mesh.nb_tets() + tets);
         self.reserve_scratch(self.mesh.nb_vertices() + vertices);
@@ -833,6 +839,8 @@ impl Cutter {
             None => session.allocate(first),
             Some((_, o)) => o.clone(),
         };
+        // The copies are appended below: room now, rather than a reallocation then.
+        origins.reserve(copies.groups.len());
         let live = || {
             child_of
                 .iter()

@@ -96,6 +96,13 @@ impl Attributes {
         }
     }
 
+    /// Maps the memory of every column's spare capacity now ([`super::touch_spare`]).
+    pub(crate) fn touch_spare(&mut self) {
+        for c in &mut self.columns {
+            super::touch_spare(&mut c.values);
+        }
+    }
+
     /// How many elements every column can still take without reallocating (`None`: no
     /// column).
     pub(crate) fn spare(&self) -> Option<usize> {
