@@ -89,6 +89,18 @@ pub struct QueryBuffers {
     list: Vec<TetId>,
 }
 
+impl QueryBuffers {
+    /// Room for a query listing about `tets` tets, its memory mapped.
+    pub fn reserve(&mut self, tets: usize) {
+        use crate::mesh::reserve_mapped;
+        reserve_mapped(&mut self.firsts, tets);
+        reserve_mapped(&mut self.list, tets);
+        reserve_mapped(&mut self.leaves, tets / LEAF_SIZE);
+        reserve_mapped(&mut self.level, tets / LEAF_SIZE);
+        reserve_mapped(&mut self.below, tets / LEAF_SIZE);
+    }
+}
+
 struct Query<'a> {
     positions: &'a [DVec3],
     scales: &'a [f64],

@@ -354,10 +354,17 @@ impl TetMesh {
     }
 }
 
-/// Writes one element of every page of `v`'s spare capacity (zeros, which stay spare), so
-/// that the kernel maps those pages now: `Vec::reserve` only reserves addresses, and the
-/// cut that first appends to each page would pay for its fault (a live model's scalpel
-/// step met about 3 per step, half of them in the room kept for it).
+/// Room for `n` elements in `v` (its length included), every page of it mapped now: one
+/// element of each page of the spare capacity is written (zeros, which stay spare), since
+/// `Vec::reserve` only reserves addresses and the cut that first appends to each page
+/// would pay for its fault (a live model's scalpel step met about 3 per step, half of them
+/// in the room kept for it).
+pub(crate) fn reserve_mapped<T>(v: &mut Vec<T>, n: usize) {
+    v.reserve(n.saturating_sub(v.len()));
+    touch_spare(v);
+}
+
+/// Writes one element of every page of `v`'s spare capacity (see [`reserve_mapped`]).
 pub(crate) fn touch_spare<T>(v: &mut Vec<T>) {
     let step = (4096 / std::mem::size_of::<T>().max(1)).max(1);
     for slot in v.spare_capacity_mut().iter_mut().step_by(step) {
