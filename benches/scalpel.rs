@@ -15,12 +15,17 @@
 //! * `direct`: [`Scalpel`], every level of the MT cut at each of 100 steps (the paper's
 //!   non-time-critical update, the baseline).
 //!
+//! * `vtk_clip_local`: for scale, not a target, VTK's clip (the same script) of what a
+//!   step works on: the current tets whose boxes meet the middle step's polygon's box,
+//!   just before that step, by its plane; each time-critical row divides its median step
+//!   by it (`step_median_over_local_vtk`).
+//!
 //! Targets (issue 7): frontier-first step median ≤ 0.01× and p99 ≤ 0.03× VTK's clip.
 //!
 //! `cargo bench --bench scalpel` prints one JSON object on stdout.
 
 use mtcut::cut::{Blade, LiveMt, PendingBudget, Scalpel};
-use mtcut::geom::{DVec3, Tolerance, scalpel_sweep};
+use mtcut::geom::{Aabb, DVec3, Tolerance, scalpel_sweep};
 use mtcut::mt::{BuildOptions, ExtractOptions, Mt};
 use serde_json::{Value, json};
 use std::path::Path;
@@ -50,6 +55,7 @@ fn main() {
     let live_bent = time_critical(&mt, &blades, Body::Bent, true);
     let live_moving = time_critical(&mt, &blades, Body::Moving, true);
     let live_queued = time_critical(&mt, &blades, Body::Rest, false);
+    let local = vtk_clip_local(root, &mt, &blades);
     let mut scalpel = Scalpel::new(mt, blade(0)).expect("scalpel");
     let mut ms: Vec<f64> = Vec::new();
     let mut cells: Vec<usize> = Vec::new();
@@ -95,6 +101,7 @@ fn main() {
         _ => None,
     };
     let ratio = |x: f64| vtk_ms.map(|v| x / v);
+    let local_ms = local["median_ms"].as_f64();
     let med = |f: &dyn Fn(&(f64, f64, usize)) -> f64| {
         let mut v: Vec<f64> = parts.iter().map(f).collect();
         v.sort_by(f64::total_cmp);
@@ -107,6 +114,7 @@ fn main() {
         let p = v["step_ms_p99"].as_f64().unwrap_or(f64::NAN);
         v["step_median_over_vtk"] = json!(ratio(m));
         v["step_p99_over_vtk"] = json!(ratio(p));
+        v["step_median_over_local_vtk"] = json!(local_ms.map(|l| m / l));
         v["target_median_met"] = json!(ratio(m).map(|r| r <= 0.01));
         v["target_p99_met"] = json!(ratio(p).map(|r| r <= 0.03));
         v
@@ -114,6 +122,7 @@ fn main() {
     let report = json!({
         "mesh": "fandisk",
         "vtk_clip_whole_mesh_ms": vtk_ms,
+        "vtk_clip_local": local,
         "targets": "frontier-first step median <= 0.01x and p99 <= 0.03x VTK's whole-mesh clip",
         "time_critical": {
             "at_rest": tc(&live_at_rest),
@@ -139,6 +148,86 @@ fn main() {
         "threads": rayon::current_num_threads(),
     });
     println!("{report}");
+}
+
+/// VTK's clip of what a step works on, for scale (not a target): the tets of the current
+/// mesh whose boxes meet the box of the sweep's middle polygon, just before the at-rest
+/// sweep cuts it (the earlier steps cut, the queue not drained), clipped by that polygon's
+/// plane with the same script as the whole mesh (its fixed costs included: on a few
+/// hundred cells they are most of it).
+fn vtk_clip_local(root: &Path, mt: &Mt, blades: &[Blade]) -> Value {
+    let mut live =
+        LiveMt::new(mt.clone(), &median_resolution(mt), Scalpel::OPTIONS).expect("live model");
+    let polygons: Vec<_> = blades
+        .windows(2)
+        .flat_map(|w| scalpel_sweep(w[0], w[1], Tolerance { relative: 1e-9 }).expect("sweep"))
+        .collect();
+    let middle = polygons.len() / 2;
+    for polygon in &polygons[..middle] {
+        live.cut(polygon).expect("frontier-first cut");
+    }
+    let polygon = &polygons[middle];
+    let mesh = live.mesh();
+    let reach = polygon.bbox();
+    let tets: Vec<_> = mesh
+        .tets()
+        .iter()
+        .filter(|t| Aabb::from_points(&t.map(|v| mesh.position(v))).intersects(&reach))
+        .collect();
+    // TetGen files of those tets (their vertices renumbered in order of use), which the
+    // script reads.
+    let mut index = vec![u32::MAX; mesh.nb_vertices()];
+    let mut used = Vec::new();
+    let mut ele = format!("{} 4 0\n", tets.len());
+    for (i, t) in tets.iter().enumerate() {
+        let ids = t.map(|v| {
+            if index[v.idx()] == u32::MAX {
+                index[v.idx()] = used.len() as u32;
+                used.push(mesh.position(v));
+            }
+            index[v.idx()]
+        });
+        ele += &format!("{i} {} {} {} {}\n", ids[0], ids[1], ids[2], ids[3]);
+    }
+    let mut node = format!("{} 3 0 0\n", used.len());
+    for (i, p) in used.iter().enumerate() {
+        node += &format!("{i} {:e} {:e} {:e}\n", p.x, p.y, p.z);
+    }
+    let base = std::env::temp_dir().join(format!("mtcut-scalpel-local-{}", std::process::id()));
+    let written = std::fs::write(base.with_extension("node"), node)
+        .and_then(|_| std::fs::write(base.with_extension("ele"), ele));
+    let (o, n) = (polygon.points()[0], polygon.normal());
+    let out = written.ok().and_then(|_| {
+        Command::new("/usr/bin/python3")
+            .arg(root.join("scripts/vtk/cut_vtk_clip.py"))
+            .arg(&base)
+            .args([o.x, o.y, o.z, n.x, n.y, n.z].map(|x| x.to_string()))
+            .arg("51")
+            .output()
+            .ok()
+    });
+    for ext in ["node", "ele"] {
+        let _ = std::fs::remove_file(base.with_extension(ext));
+    }
+    let clip = out
+        .filter(|o| o.status.success())
+        .and_then(|o| serde_json::from_slice::<Value>(&o.stdout).ok());
+    json!({
+        "what": "VTK's clip of the current tets whose boxes meet the middle step's polygon's box, by its plane (for scale, not a target)",
+        "cells": tets.len(),
+        "cells_crossed": clip.as_ref().map(|c| c["cells_crossed"].clone()),
+        "median_ms": clip.as_ref().map(|c| c["median_ms"].clone()),
+    })
+}
+
+/// The extraction threshold of the live models: the median fragment error.
+fn median_resolution(mt: &Mt) -> ExtractOptions {
+    let mut errors: Vec<f64> = (0..mt.nb_fragments())
+        .map(|f| mt.fragment_error(mtcut::mesh::FragmentId::from_usize(f)))
+        .filter(|e| e.is_finite() && *e > 0.0)
+        .collect();
+    errors.sort_by(f64::total_cmp);
+    ExtractOptions::threshold(errors[errors.len() / 2])
 }
 
 /// The blade positions of a sweep across `mesh` in `steps` steps (the direct sweep's blade).
@@ -169,13 +258,8 @@ enum Body {
 }
 
 fn time_critical(mt: &Mt, blades: &[Blade], body: Body, drain_each_step: bool) -> Value {
-    let mut errors: Vec<f64> = (0..mt.nb_fragments())
-        .map(|f| mt.fragment_error(mtcut::mesh::FragmentId::from_usize(f)))
-        .filter(|e| e.is_finite() && *e > 0.0)
-        .collect();
-    errors.sort_by(f64::total_cmp);
-    let resolution = ExtractOptions::threshold(errors[errors.len() / 2]);
-    let mut live = LiveMt::new(mt.clone(), &resolution, Scalpel::OPTIONS).expect("live model");
+    let mut live =
+        LiveMt::new(mt.clone(), &median_resolution(mt), Scalpel::OPTIONS).expect("live model");
     let current_tets = live.mesh().nb_tets();
     if body == Body::Bent {
         // A bend of 0.5% of the diagonal (no tet inverted) under the same blade.
