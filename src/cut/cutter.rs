@@ -20,7 +20,7 @@ use super::unglue::{
 use crate::geom::{CutPolygon, DVec3, Sign};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::TET_EDGES;
-use crate::mesh::{Attribute, Attributes, Tet, TetId, TetMesh, VertexId};
+use crate::mesh::{Attribute, Attributes, Tet, TetId, TetMesh, VertexId, corners};
 use std::collections::{HashMap, HashSet};
 use std::time::{Duration, Instant};
 
@@ -423,7 +423,7 @@ impl Cutter {
         use rayon::prelude::*;
         check_positions(positions, self.mesh.nb_vertices())?;
         let inverted_tet = |t: &Tet| {
-            let [a, b, c, d] = t.map(|v| positions[v.idx()]);
+            let [a, b, c, d] = corners(t, |v| positions[v.idx()]);
             crate::geom::orient3d(a, b, c, d) != Sign::Positive
         };
         // On one core below `PARALLEL_ORIENT` tets: a moving fandisk's current mesh
@@ -922,7 +922,7 @@ impl Cutter {
         for &i in child_of.iter().filter(|&&i| i != NONE) {
             let c = &mut children[i as usize];
             for t in c.tets[..c.len].iter_mut() {
-                *t = t.map(|v| session.resolve(v));
+                *t = corners(t, |v| session.resolve(v));
             }
         }
         drop(session);
@@ -951,7 +951,7 @@ impl Cutter {
             i != NONE && {
                 let c = &children[i as usize];
                 c.tets[..c.len].iter().any(|t| {
-                    let [a, b, c, d] = t.map(at);
+                    let [a, b, c, d] = corners(t, at);
                     crate::geom::orient3d(a, b, c, d) != Sign::Positive
                 })
             }

@@ -291,7 +291,7 @@ use super::unglue::{StarEntry, plan_copies};
 use crate::geom::{Aabb, CutPolygon, DVec3, PLANE_SNAP, Sign, lies_in_plane, snap_to_plane};
 use crate::mesh::fxhash::FxBuild;
 use crate::mesh::tables::{TET_EDGES, TET_FACES, flip_face, oriented_face};
-use crate::mesh::{FragmentId, Tet, TetId, VertexId, boundary_hits};
+use crate::mesh::{FragmentId, Tet, TetId, VertexId, boundary_hits, corners};
 use crate::mt::history::{Made, MadeBy};
 use crate::mt::{FragmentBvh, FragmentKind, GHOST, KnownDag, Mt, OpenMt, TetLinks};
 use rayon::prelude::*;
@@ -985,7 +985,7 @@ impl MtCutter {
             // The deformed positions place each tet by its vertices; a tet they fold has no
             // plane section the tables could make at rest.
             let folded = tets.iter().position(|t| {
-                let [a, b, c, d] = t.map(|v| positions[v.idx()]);
+                let [a, b, c, d] = corners(t, |v| positions[v.idx()]);
                 crate::geom::orient3d(a, b, c, d) != crate::geom::Sign::Positive
             });
             if let Some(k) = folded {
@@ -1130,7 +1130,7 @@ impl MtCutter {
         for slot in child_of.iter_mut().filter(|i| **i != NONE) {
             let mut c = children[*slot as usize];
             for t in c.tets[..c.len].iter_mut() {
-                *t = t.map(|v| session.resolve(v));
+                *t = corners(t, |v| session.resolve(v));
             }
             *slot = live.len() as u32;
             live.push(c);

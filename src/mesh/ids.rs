@@ -57,3 +57,12 @@ id_type!(
 
 /// A tetrahedron as its four vertices, positively oriented (see [`crate::geom::orient3d`]).
 pub type Tet = [VertexId; 4];
+
+/// `f` of each corner of `t`, in order: what `t.map(f)` gives, built element by element
+/// and always inlined. In the hot loops of a cut, `map` was sometimes left a call whose
+/// result the caller read back from the stack (a stalled load): a live model's setting of
+/// positions took 1.3 ms instead of 0.9 once code elsewhere changed that choice.
+#[inline(always)]
+pub(crate) fn corners<T>(t: &Tet, f: impl Fn(VertexId) -> T) -> [T; 4] {
+    [f(t[0]), f(t[1]), f(t[2]), f(t[3])]
+}

@@ -18,6 +18,7 @@ mod validate;
 pub use adjacency::{BoundaryFace, FaceAdjacency, VertexStars};
 pub use attributes::{Attribute, Attributes};
 pub use boundary::Boundary;
+pub(crate) use ids::corners;
 pub use ids::{FragmentId, Tet, TetId, VertexId};
 pub use quality::{QualitySummary, TetQuality, tet_quality};
 pub(crate) use validate::{Numbering, boundary_hits};
