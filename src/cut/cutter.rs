@@ -151,9 +151,10 @@ impl CutBuffers {
     }
 
     /// A cut through a mesh of `n` tets meets about `n^(2/3)` of them (a plane section of
-    /// a body of `n` cells of about equal size), splitting fandisk's 0.75 times that and
-    /// fandisk-1m's 0.9 among about 3.5 times as many candidates (snapped vertices'
-    /// stars): room for such a cut.
+    /// a body of `n` cells of about equal size): a square through the middle of fandisk
+    /// splits 0.75 times that many, among 3.5 times that many candidates (the snapped
+    /// vertices' stars with them), and of fandisk-1m 0.9 times that many. Room for
+    /// `n^(2/3)` split tets among four times as many candidates.
     fn reserve_for_mesh(&mut self, n: usize) {
         let section = (n as f64).powf(2.0 / 3.0).ceil() as usize;
         self.reserve(section, 4 * section);
