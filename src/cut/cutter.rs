@@ -188,7 +188,13 @@ struct PlanBuffers {
     negative: Vec<u16>,
     entries: Vec<StarEntry>,
     scratch: PlanScratch,
+    /// Lists of copies' tets given back once a cut has made its copies, taken again by
+    /// the next plans: a list per copied vertex was most of a scalpel step's allocations.
+    spare: Vec<Vec<TetId>>,
 }
+
+/// Lists [`PlanBuffers::spare`] keeps at most.
+const SPARE_LISTS: usize = 1 << 12;
 
 /// The snapped vertices of a cut (sorted) and where each lies in the candidates: the
 /// (candidate, local index) pairs of vertex `vertices[i]` are `at[start[i]..start[i + 1]]`,
@@ -1098,12 +1104,15 @@ impl Cutter {
                 self.valence[v.idx()][0] -= members.len() as u32;
             }
             let all = self.mesh.tets_mut();
-            for m in members {
+            for &m in &members {
                 for x in all[slot(m).idx()].iter_mut() {
                     if *x == v {
                         *x = copy;
                     }
                 }
+            }
+            if plan.spare.len() < SPARE_LISTS {
+                plan.spare.push(members);
             }
         }
         if let Some(roots) = self.roots.as_mut() {
@@ -1188,11 +1197,13 @@ impl Cutter {
             Err(_) => Self::unsplit_side(mesh, polygon, &tets[k], &classes[k].states),
         };
         let mut out = Copies::default();
+        out.groups.reserve(examine.len());
         let PlanBuffers {
             around,
             negative,
             entries,
             scratch,
+            spare,
         } = buffers;
         // The tets around v made from candidate k, with their virtual slots and sides: its
         // children through v when split, itself when whole.
@@ -1260,7 +1271,9 @@ impl Cutter {
                 ParentPlan::CopyNegative => {
                     // The children holding the vertex on the negative side, from the
                     // table entries (in the order `around_v` lists them).
-                    let mut members = Vec::with_capacity(2 * run.len());
+                    let mut members = spare.pop().unwrap_or_default();
+                    members.clear();
+                    members.reserve(2 * run.len());
                     for (&(k, _), &mask) in run.iter().zip(negative.iter()) {
                         let mut m = mask;
                         while m != 0 {
