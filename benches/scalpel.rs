@@ -90,18 +90,7 @@ fn main() {
     // VTK's clip of the whole finest mesh by the blade's plane (normal from the sweep).
     let p = [blade(0)[0], blade(0)[1], blade(1)[0]];
     let normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize();
-    let vtk = Command::new("/usr/bin/python3")
-        .arg(root.join("scripts/vtk/cut_vtk_clip.py"))
-        .arg(&base)
-        .args([c.x, c.y, c.z, normal.x, normal.y, normal.z].map(|x| x.to_string()))
-        .arg("9")
-        .output();
-    let vtk_ms = match vtk {
-        Ok(o) if o.status.success() => serde_json::from_slice::<Value>(&o.stdout)
-            .ok()
-            .and_then(|v| v["median_ms"].as_f64()),
-        _ => None,
-    };
+    let vtk_ms = vtk_clip(root, &base, c, normal, 9).and_then(|v| v["median_ms"].as_f64());
     let ratio = |x: f64| vtk_ms.map(|v| x / v);
     let local_ms = local["median_ms"].as_f64();
     let med = |f: &dyn Fn(&(f64, f64, usize)) -> f64| {
@@ -186,21 +175,13 @@ fn vtk_clip_local(root: &Path, mt: &Mt, blades: &[Blade]) -> Value {
     let clip = |tets: &[Tet], name: &str| {
         let base =
             std::env::temp_dir().join(format!("mtcut-scalpel-{name}-{}", std::process::id()));
-        let written = write_tetgen(&base, mesh, tets);
-        let out = written.ok().and_then(|_| {
-            Command::new("/usr/bin/python3")
-                .arg(root.join("scripts/vtk/cut_vtk_clip.py"))
-                .arg(&base)
-                .args([o.x, o.y, o.z, n.x, n.y, n.z].map(|x| x.to_string()))
-                .arg("51")
-                .output()
-                .ok()
-        });
+        let out = write_tetgen(&base, mesh, tets)
+            .ok()
+            .and_then(|_| vtk_clip(root, &base, o, n, 51));
         for ext in ["node", "ele"] {
             let _ = std::fs::remove_file(base.with_extension(ext));
         }
-        out.filter(|o| o.status.success())
-            .and_then(|o| serde_json::from_slice::<Value>(&o.stdout).ok())
+        out
     };
     let local = clip(&tets, "local");
     let one = crossed.and_then(|t| clip(std::slice::from_ref(t), "one"));
@@ -213,8 +194,34 @@ fn vtk_clip_local(root: &Path, mt: &Mt, blades: &[Blade]) -> Value {
     })
 }
 
+/// VTK's clip (scripts/vtk/cut_vtk_clip.py, `repetitions` times) of the TetGen mesh
+/// `base` by the plane through `origin` of normal `normal`: the script's JSON, or None when
+/// it could not run.
+fn vtk_clip(
+    root: &Path,
+    base: &Path,
+    origin: DVec3,
+    normal: DVec3,
+    repetitions: usize,
+) -> Option<Value> {
+    let (o, n) = (origin, normal);
+    let out = Command::new("/usr/bin/python3")
+        .arg(root.join("scripts/vtk/cut_vtk_clip.py"))
+        .arg(base)
+        .args([o.x, o.y, o.z, n.x, n.y, n.z].map(|x| x.to_string()))
+        .arg(repetitions.to_string())
+        .output()
+        .ok()?;
+    out.status
+        .success()
+        .then(|| serde_json::from_slice::<Value>(&out.stdout).ok())
+        .flatten()
+}
+
 /// `tets` of `mesh` as TetGen files `base`.node and `base`.ele (their vertices renumbered
-/// in order of use), which the VTK script reads.
+/// in order of use), which the VTK script reads. Written here rather than through
+/// `TetMesh::submesh` and `mtcut::io::write_tetgen`: tets taken by their boxes need not
+/// make a valid mesh (two may meet at an edge only), which `submesh` rejects.
 fn write_tetgen(base: &Path, mesh: &TetMesh, tets: &[Tet]) -> std::io::Result<()> {
     let mut index = vec![u32::MAX; mesh.nb_vertices()];
     let mut used = Vec::new();
