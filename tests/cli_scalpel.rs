@@ -51,12 +51,14 @@ fn fandisk_model(dir: &Path) -> (std::path::PathBuf, Aabb) {
     (model, b)
 }
 
-/// Fandisk's model in `dir` and a path file of a blade tilting as it crosses it in 20
-/// steps (`blades::tilting_in`), whose eleventh step the model refuses.
+/// Fandisk's model in `dir` and a path file of a blade tilting as it crosses it in 24
+/// steps (`blades::tilting_in`), whose ninth step the model refuses, however the sweep is
+/// split into triangles (in 20 steps, the eleventh was refused as the default split and
+/// taken as another).
 fn tilting_path(dir: &Path) -> (std::path::PathBuf, std::path::PathBuf) {
     let (model, b) = fandisk_model(dir);
-    let blades: Vec<[[f64; 3]; 2]> = (0..=20)
-        .map(|k| blades::tilting_in(&b, k, 20).map(|p| p.to_array()))
+    let blades: Vec<[[f64; 3]; 2]> = (0..=24)
+        .map(|k| blades::tilting_in(&b, k, 24).map(|p| p.to_array()))
         .collect();
     let path = dir.join("tilt.json");
     write_path(&path, &blades);
@@ -169,8 +171,8 @@ fn bad_path_files_are_refused_by_name() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// A blade tilting as it crosses fandisk in 20 steps (tests/mt_scalpel.rs) would break
-/// the MT's levels at its eleventh step (a known limit of the MT cut, see
+/// A blade tilting as it crosses fandisk in 24 steps (as tests/mt_scalpel.rs's in 20)
+/// would break the MT's levels at its ninth step (a known limit of the MT cut, see
 /// `mtcut::cut::scalpel`), which the MT cut refuses: the run stops there, with the steps
 /// before it written and listed, and saves nothing.
 #[test]
@@ -191,25 +193,53 @@ fn a_step_that_breaks_the_model_stops_the_run() {
             s(&saved),
         ],
         &[
-            "step 11",
+            "step 9",
             "refused, the MT is as it was",
-            "steps 0-10 written",
+            "steps 0-8 written",
             "nothing saved",
         ],
     );
     assert!(!saved.exists(), "{err}");
     let pvd = std::fs::read_to_string(out.join("scalpel.pvd")).expect("pvd");
-    for k in 0..=10 {
+    for k in 0..=8 {
         let name = format!("step-{k:04}.vtu");
         assert!(pvd.contains(&name), "{name} not listed");
         read_valid(&out.join(&name));
     }
-    assert!(!pvd.contains("step-0011.vtu"));
+    assert!(!pvd.contains("step-0009.vtu"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The blade tilting across fandisk in 20 steps: its eleventh sweep's default triangles
+/// are refused by the model, another split of that sweep is taken (`split` in `--json`,
+/// named in the step's line), and the run cuts every step, the model valid and saved.
+#[test]
+fn a_refused_split_of_a_sweep_is_cut_as_another() {
+    let dir = scratch("cli_scalpel_split");
+    let (model, b) = fandisk_model(&dir);
+    let blades: Vec<[[f64; 3]; 2]> = (0..=20)
+        .map(|k| blades::tilting_in(&b, k, 20).map(|p| p.to_array()))
+        .collect();
+    let path = dir.join("tilt20.json");
+    write_path(&path, &blades);
+    let (out, saved) = (dir.join("series"), dir.join("cut.mt"));
+    let mut args = scalpel_args(&model, &path, &out, &saved, &[]);
+    let stdout = ok(&args);
+    assert!(stdout.contains("split"), "{stdout}");
+    assert!(Mt::load(&saved).expect("saved").validate().is_valid());
+    args.push("--json");
+    let j = json(&args);
+    assert_eq!(j["refused_steps"].as_array().map(Vec::len), Some(0), "{j}");
+    let steps = j["steps"].as_array().expect("steps");
+    let split = |k: usize| steps[k - 1]["split"].as_u64().expect("split");
+    assert!(split(11) > 0, "{}", steps[10]);
+    assert_eq!(split(10), 0, "{}", steps[9]);
+    read_valid(&out.join("step-0020.vtu"));
     std::fs::remove_dir_all(&dir).ok();
 }
 
 /// The same tilting blade with `--skip-refused`: the run goes on past the steps the model
-/// refuses (step 11 first), warning on stderr and listing them (`refused_steps`), the
+/// refuses (step 9 first), warning on stderr and listing them (`refused_steps`), the
 /// blade moving on without cutting, so that a later step cuts again; it writes one valid
 /// mesh per time step (a skipped step's unchanged) and saves a valid model; run
 /// time-critical too. A mesh, which the plain engine cuts whole, refuses the option.
@@ -226,12 +256,12 @@ fn skip_refused_goes_on_past_the_steps_the_model_refuses() {
         let (stdout, stderr) = (cli_support::stdout(&o), cli_support::stderr(&o));
         assert!(o.status.success(), "{name}: {stderr}");
         assert!(
-            stderr.contains("step 11") && stderr.contains("refused"),
+            stderr.contains("step 9") && stderr.contains("refused"),
             "{name}: {stderr}"
         );
         assert!(stdout.contains("refused and skipped"), "{name}: {stdout}");
         let pvd = std::fs::read_to_string(out.join("scalpel.pvd")).expect("pvd");
-        for k in 0..=20 {
+        for k in 0..=24 {
             let name = format!("step-{k:04}.vtu");
             assert!(pvd.contains(&name), "{name} not listed");
             read_valid(&out.join(&name));
@@ -241,11 +271,11 @@ fn skip_refused_goes_on_past_the_steps_the_model_refuses() {
         args.push("--json");
         let j = json(&args);
         let refused = j["refused_steps"].as_array().expect("refused_steps");
-        assert_eq!(refused[0], 11, "{name}: {j}");
+        assert_eq!(refused[0], 9, "{name}: {j}");
         let steps = j["steps"].as_array().expect("steps");
-        assert!(steps[10]["refused"].is_string(), "{name}: {}", steps[10]);
-        assert!(steps[9]["refused"].is_null(), "{name}: {}", steps[9]);
-        let cuts_again = steps[11..]
+        assert!(steps[8]["refused"].is_string(), "{name}: {}", steps[8]);
+        assert!(steps[7]["refused"].is_null(), "{name}: {}", steps[7]);
+        let cuts_again = steps[9..]
             .iter()
             .any(|s| s["refused"].is_null() && s["polygons"].as_u64() > Some(0));
         assert!(cuts_again, "{name}: no step cut after the first skipped");

@@ -2,9 +2,10 @@
 //! step cutting only the area it swept. Incisions that turn, a blade that tilts as it
 //! moves (non-planar sweeps, two triangles per step), an incision that ends inside the
 //! body and is extended later, and new incisions meeting an earlier one (T) or crossing it
-//! (X), and a blade in an axis-aligned plane. A blade tilting at steeper angles between
-//! steps is still refused at some steps (the refusal test below uses it), and so is a
-//! turning blade ending inside pinion and liver (an ignored test).
+//! (X), and a blade in an axis-aligned plane. A sweep whose two triangles the MT refuses
+//! is cut as another split of it where the MT takes one. A blade tilting at steeper angles
+//! between steps is still refused at some steps (the refusal tests below use it), and so
+//! is a turning blade ending inside pinion and liver (an ignored test).
 //! After every step the MT is valid, the finest and coarsest meshes keep their volume, and
 //! extractions at 10 thresholds (and focus regions at some steps) are valid meshes that no
 //! polygon applied so far crosses.
@@ -18,7 +19,9 @@ use blades::{on_arc, random_path, shallow_path, tilting, tilting_in};
 use mtcut::cut::{
     Blade, Components, CutError, CutOptions, Cutter, MtCutter, Scalpel, ScalpelError,
 };
-use mtcut::geom::{Aabb, CutPolygon, DVec3, SWEEP_PLANARITY, Tolerance, scalpel_sweep};
+use mtcut::geom::{
+    Aabb, CutPolygon, DVec3, SWEEP_PLANARITY, Tolerance, scalpel_sweep, scalpel_sweep_splits,
+};
 use mtcut::mt::{BuildOptions, Mt};
 use mtcut_common::*;
 
@@ -307,6 +310,50 @@ fn a_cut_breaking_the_mt_is_refused_and_given_back() {
     assert!(refused > 0, "no cut of the steep tilting path was refused");
 }
 
+/// A step the MT refuses as its sweep's default two triangles is cut as another split of
+/// the same sweep (`Scalpel::step`, `scalpel_sweep_splits`): on random path 0 through
+/// fandisk's MT (a blade ending inside the body, leaning, so that every sweep is two
+/// triangles), step 10's default triangles are refused by a cutter in the scalpel's state,
+/// the scalpel takes another split, and the MT is valid after every step, each extraction
+/// crossed by none of the polygons cut.
+#[test]
+fn a_refused_split_of_a_sweep_gives_way_to_another() {
+    let model = mt_common::built("fandisk").1.clone();
+    let volumes = extreme_volumes(&model);
+    let mut rng = cut_common::Rng(0xB1ADE);
+    let path = random_path(&Aabb::from_points(model.positions()), || rng.unit());
+    let mut scalpel = Scalpel::new(model, path[0]).expect("scalpel");
+    let mut applied = Vec::new();
+    for (k, &to) in path.iter().enumerate().take(11).skip(1) {
+        let from = scalpel.incision().end();
+        let default = scalpel_sweep(from, to, SWEEP_PLANARITY).expect("sweep");
+        assert_eq!(default.len(), 2, "step {k}: the sweep is not two triangles");
+        let twin = (k == 10).then(|| scalpel.mt().clone());
+        let step = scalpel
+            .step(to)
+            .unwrap_or_else(|e| panic!("fandisk, random path 0, step {k}: {e}"));
+        let polygons: Vec<CutPolygon> = scalpel_sweep_splits(from, to, SWEEP_PLANARITY)
+            .expect("splits")
+            .swap_remove(step.split);
+        if let Some(mt) = twin {
+            assert!(step.split > 0, "step 10 took the default split");
+            let mut cutter = MtCutter::new(mt, Scalpel::OPTIONS).expect("cutter");
+            let refused = default.iter().try_for_each(|p| cutter.cut(p).map(drop));
+            assert!(
+                matches!(refused, Err(CutError::MtInconsistent { .. })),
+                "step 10's default split was not refused: {refused:?}"
+            );
+        } else {
+            assert_eq!(step.split, 0, "step {k}");
+        }
+        applied.extend(polygons);
+        let req = requests(scalpel.mt(), 10, 1, &mut Rng(k as u64));
+        if let Err(m) = check_after_cut(scalpel.cutter(), volumes, &applied, &req) {
+            panic!("fandisk, random path 0, step {k}: {m}");
+        }
+    }
+}
+
 /// The random scalpel paths of tests/cut_scalpel.rs (turning, leaning, through the body or
 /// stopping inside it), which the plain-mesh engine takes whole, moved through each shared
 /// mesh's MT by a [`Scalpel`]: a step the MT refuses is skipped (the MT as it was; the next
@@ -314,10 +361,10 @@ fn a_cut_breaking_the_mt_is_refused_and_given_back() {
 /// be refused. Measured (25 paths per mesh): see the ignore reason and the README's
 /// "Scalpel on the MT: random paths".
 #[test]
-#[ignore = "KNOWN FAILURE (issue 7 open): the MT refuses steps of 9, 9 and 8 of the 25 \
-            random paths on fandisk, pinion and liver (steps continuing the last at an \
-            angle: turning blades, most of all those ending inside the body, and leaning \
-            ones, whose sweeps are two triangles)"]
+#[ignore = "KNOWN FAILURE (issue 7 open): the MT refuses steps of 6, 7 and 5 of the 25 \
+            random paths on fandisk, pinion and liver, however each sweep is split (steps \
+            continuing the last at an angle: turning blades, most of all those ending \
+            inside the body, and leaning ones, whose sweeps are two triangles)"]
 fn random_scalpel_paths_through_the_mt() {
     refused_on_random_paths(|name| mt_common::built(name).1.clone());
 }
@@ -329,10 +376,11 @@ fn random_scalpel_paths_through_the_mt() {
 /// outside the wedge between the two cracks: `mtcut::cut::mt_cut`'s `TurnTips`), not
 /// from levels that disagree.
 #[test]
-#[ignore = "KNOWN FAILURE (issue 7 open): on one level the MT still refuses steps of 4, 2 \
-            and 4 of the 25 paths on fandisk, pinion and liver (first refusals: a turning \
-            tip's copy given to two fans of tets, and flat children the plain engine \
-            avoids with a snap beyond the MT's 1e-4)"]
+#[ignore = "KNOWN FAILURE (issue 7 open): on one level the MT still refuses steps of 2 of \
+            the 25 paths on liver, however each sweep is split (4, 2 and 4 paths on \
+            fandisk, pinion and liver with the first split only: a turning tip's copy \
+            given to two fans of tets, and flat children the plain engine avoids with a \
+            snap beyond the MT's 1e-4)"]
 fn random_scalpel_paths_through_an_mt_of_one_level() {
     refused_on_random_paths(|name| {
         let mesh = &mt_common::built(name).0;
@@ -385,8 +433,8 @@ fn refused_on_random_paths(mt_of: impl Fn(&str) -> Mt) {
 /// an angle, at 12 lines across each shared mesh and 0.5°, 4° and 30°: the MT valid after
 /// each, and no continuation should be refused.
 #[test]
-#[ignore = "KNOWN FAILURE (issue 7 open): refused at 1 of the 12 lines on pinion and 2 on \
-            liver, at every angle (a coarse tet near the first triangle's corner holds tips \
+#[ignore = "KNOWN FAILURE (issue 7 open): refused at 1 of the 12 lines on pinion (at 30°) \
+            and 2 on liver (at every angle) (a coarse tet near the first triangle's corner holds tips \
             of two of its edges and joins the wedge to the rest)"]
 fn a_triangle_continuing_a_partial_one_at_an_angle() {
     let mut refused = Vec::new();
@@ -647,23 +695,28 @@ fn a_blade_turning_in_short_steps_is_refused_before_an_extraction_pinches() {
 }
 
 /// A scalpel step cutting two triangles (a non-planar sweep) whose second triangle the MT
-/// refuses, after it took the first, is refused whole: the MT is byte for byte what it was
-/// before the step and the blade where it was. The scalpel then cuts on as if the step had
-/// not been tried (the same MT as a cutter that never tried it), valid after. (Fandisk's
-/// blade tilting in 30 steps: its step 6 is such a step.)
+/// refuses, after it took the first, however the sweep is split, is refused whole: the MT
+/// is byte for byte what it was before the step and the blade where it was. The scalpel
+/// then cuts on as if the step had not been tried (the same MT as a cutter that never
+/// tried it), valid after. (Fandisk's blade tilting in 36 steps: its step 15 is such a
+/// step; some before it are taken as another split of their sweeps, which the twin cuts
+/// too.)
 #[test]
 fn a_step_whose_second_triangle_is_refused_changes_nothing() {
     let name = "fandisk";
     let mut twin = Run::new(name);
     let b = twin.bounds();
-    let path: Vec<Blade> = (0..=30).map(|k| tilting_in(&b, k, 30)).collect();
+    let path: Vec<Blade> = (0..=36).map(|k| tilting_in(&b, k, 36)).collect();
     let mut scalpel = Scalpel::new(twin.cutter.mt().clone(), path[0]).expect("scalpel");
     let sweep = |from: Blade, to: Blade| scalpel_sweep(from, to, SWEEP_PLANARITY).expect("sweep");
     for k in 1..path.len() {
         let before = scalpel.mt().to_bytes();
         let e = match scalpel.step(path[k]) {
-            Ok(_) => {
-                for p in sweep(path[k - 1], path[k]) {
+            Ok(step) => {
+                let taken = scalpel_sweep_splits(path[k - 1], path[k], SWEEP_PLANARITY)
+                    .expect("splits")
+                    .swap_remove(step.split);
+                for p in taken {
                     twin.cutter.cut(&p).expect("the twin cuts alike");
                     twin.polygons.push(p);
                 }
@@ -675,14 +728,22 @@ fn a_step_whose_second_triangle_is_refused_changes_nothing() {
             matches!(e, ScalpelError::Cut(CutError::MtInconsistent { .. })),
             "step {k}: {e}"
         );
-        // The step refused its second triangle: the first alone is taken.
-        let triangles = sweep(path[k - 1], path[k]);
-        assert_eq!(triangles.len(), 2, "step {k}: not a two-triangle step");
-        let mut probe = MtCutter::new(twin.cutter.mt().clone(), Scalpel::OPTIONS).expect("probe");
-        probe.cut(&triangles[0]).expect("the first triangle alone");
+        // Every split of the sweep refused, some only at their second triangle, the first
+        // alone taken: the step cut it, and gave it back.
+        let splits = scalpel_sweep_splits(path[k - 1], path[k], SWEEP_PLANARITY).expect("splits");
+        let mut first_taken = 0;
+        for split in &splits {
+            assert_eq!(split.len(), 2, "step {k}: not a two-triangle step");
+            let mut probe =
+                MtCutter::new(twin.cutter.mt().clone(), Scalpel::OPTIONS).expect("probe");
+            if probe.cut(&split[0]).is_ok() {
+                first_taken += 1;
+                assert!(probe.cut(&split[1]).is_err(), "step {k}: a split is taken");
+            }
+        }
         assert!(
-            probe.cut(&triangles[1]).is_err(),
-            "step {k}: the second is refused"
+            first_taken > 0,
+            "step {k}: no split's first triangle is taken"
         );
         assert!(
             scalpel.mt().to_bytes() == before,
@@ -712,5 +773,5 @@ fn a_step_whose_second_triangle_is_refused_changes_nothing() {
         }
         return;
     }
-    panic!("no step of the 30-step tilt was refused at its second triangle");
+    panic!("no step of the 36-step tilt was refused at its second triangle");
 }

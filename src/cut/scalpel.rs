@@ -1,9 +1,10 @@
 //! Progressive scalpel cuts of an MT (paper §5's interaction, direct form): a straight
 //! blade moved in time steps, each step cutting every level of the MT with the area the
-//! blade swept since the last step ([`scalpel_sweep`]: one quadrilateral, or two triangles
-//! when the sweep is not planar), so an incision grows step by step and may end inside the
-//! body. The time-critical form, where each step cuts the simulation's current mesh first
-//! and the MT later, is [`super::LiveMt`] given the same sweeps.
+//! blade swept since the last step ([`scalpel_sweep`](crate::geom::scalpel_sweep): one
+//! quadrilateral, or two triangles when the sweep is not planar), so an incision grows step
+//! by step and may end inside the body. The time-critical form, where each step cuts the
+//! simulation's current mesh first and the MT later, is [`super::LiveMt`] given the same
+//! sweeps.
 //!
 //! The MT cut runs with [`MtCutter::DEFAULT_OPTIONS`], whose face-point margin is the
 //! smallest ([`super::MIN_FACE_POINT_MARGIN`]): each step continues the last one's crack,
@@ -24,18 +25,33 @@
 //!   turning by 8° per step keeps every level valid on the three shared meshes while it
 //!   stays inside, and cuts a corner off each when extended; a blade tilting back and
 //!   forth across them in 10 steps separates each. At steeper angles between steps (the
-//!   same tilt in 20 steps), and for a turning blade whose edge ends inside pinion or
+//!   same tilt in 24 steps), and for a turning blade whose edge ends inside pinion or
 //!   liver, some steps would break a fragment where the levels disagree on the last
 //!   crack's end. The MT cut checks each fragment it changed and refuses such a step
 //!   ([`CutError::MtInconsistent`]), the MT left as it was; the CLI stops there (or, with
 //!   `--skip-refused`, moves the blade on without cutting: [`Scalpel::skip_to`]).
+//! * **A refused sweep is cut as another split of it.** A non-planar sweep is two
+//!   triangles, the second continuing the first at an angle along a diagonal; where the
+//!   levels disagree at that diagonal, they often agree at the other. [`Scalpel::step`]
+//!   cuts a sweep the MT refuses as its next split ([`scalpel_sweep_splits`]: the other
+//!   diagonal's triangles, then each pair in the other order), each tried on the MT as
+//!   the step found it, and refuses the step only when none is taken
+//!   ([`ScalpelStep::split`] says which was cut). The crack then follows the other fold
+//!   of the blade's twisted sweep, no farther from the swept surface than the first; a
+//!   refused step costs up to four MT cuts and a copy of the cutter per split. The blade
+//!   tilting in 20 steps, whose 11th step was refused, takes every step so.
+//!   [`super::LiveMt`] does not do this: its current mesh is cut first, with the first
+//!   split.
 //! * Random paths (turning, leaning, through the body or ending inside it; the plain-mesh
-//!   engine takes every step of them, tests/cut_scalpel.rs) meet such refusals often: 46,
-//!   36 and 37 of 100 paths on fandisk's, pinion's and liver's MTs have a step refused
-//!   (measured with the refused steps skipped; tests/mt_scalpel.rs has 25 per mesh as an
-//!   ignored known failure). On an MT of one level (the mesh alone) 4, 2 and 4 of 25
-//!   paths still do (another ignored test): the MT cut's copies of a turning tip are
-//!   not yet the plain engine's. Only polygons continuing the last one at an angle are
+//!   engine takes every step of them, tests/cut_scalpel.rs) still meet refusals: 25, 28
+//!   and 29 of 100 paths on fandisk's, pinion's and liver's MTs have a step refused (46,
+//!   36 and 37 with the first split only), and, with the refused steps skipped, 212, 148
+//!   and 279 of their 6,111 steps are (395, 268 and 395); tests/mt_scalpel.rs has 25 per
+//!   mesh as an ignored known failure. Most come in runs along a path, where the blade's
+//!   end passes close to the body's boundary. On an MT of one level (the mesh alone) 0, 0
+//!   and 2 of 25 paths still do (4, 2 and 4 with the first split; another ignored test):
+//!   the MT cut's copies of a turning tip are not yet the plain engine's. Only polygons
+//!   continuing the last one at an angle are
 //!   refused, the more often the steeper the angle (5 % below 2°, 30 % to 8°, 75–86 %
 //!   above), and a leaning blade's two triangles per step meet at steep angles (its
 //!   lean's change along the blade over the step's advance). See the README, "A scalpel
@@ -63,7 +79,7 @@
 
 use super::mt_cut::{MtCutStats, MtCutter};
 use super::options::{CutError, CutOptions};
-use crate::geom::{CutPolygon, DVec3, PolygonError, SWEEP_PLANARITY, scalpel_sweep};
+use crate::geom::{CutPolygon, DVec3, PolygonError, SWEEP_PLANARITY, scalpel_sweep_splits};
 use crate::mt::Mt;
 
 /// A blade position: the segment between two points (the cutting edge).
@@ -171,12 +187,23 @@ impl Incision {
         to: Blade,
         cut: impl FnMut(&CutPolygon) -> Result<(), E>,
     ) -> Result<bool, E> {
+        self.step_split(to, 0, cut)
+    }
+
+    /// [`step`](Self::step), cutting the `split`th way of splitting the sweep
+    /// ([`scalpel_sweep_splits`]; `split` below [`splits_to`](Self::splits_to)'s length).
+    fn step_split<E: From<PolygonError>>(
+        &mut self,
+        to: Blade,
+        split: usize,
+        cut: impl FnMut(&CutPolygon) -> Result<(), E>,
+    ) -> Result<bool, E> {
         crate::geom::check_points(&to)?;
         if self.defers(to) {
             self.blade = to;
             return Ok(false);
         }
-        self.cut_to(to, cut)
+        self.cut_to(to, split, cut)
     }
 
     /// Whether a step to `to` is deferred (see [`step`](Self::step)).
@@ -184,15 +211,17 @@ impl Incision {
         blade_advance(self.end, to) < self.min_advance
     }
 
-    /// How many polygons a step to `to` cuts (`catch_up`: what [`catch_up`](Self::catch_up)
-    /// cuts, `to` being the blade): 0 when deferred or when the blade ends where the crack
-    /// does, else one quadrilateral or two triangles. A sweep that is no polygon counts 0
-    /// (the step fails on it before cutting anything).
-    fn polygons_to(&self, to: Blade, catch_up: bool) -> usize {
+    /// The ways a step to `to` may cut the sweep (`catch_up`: what
+    /// [`catch_up`](Self::catch_up) cuts, `to` being the blade), as the number of polygons
+    /// of each ([`scalpel_sweep_splits`]): none when deferred or when the blade ends where
+    /// the crack does, nor for a sweep that is no polygon (the step fails on it before
+    /// cutting anything).
+    fn splits_to(&self, to: Blade, catch_up: bool) -> Vec<usize> {
         if (!catch_up && self.defers(to)) || to == self.end {
-            return 0;
+            return Vec::new();
         }
-        scalpel_sweep(self.end, to, SWEEP_PLANARITY).map_or(0, |p| p.len())
+        scalpel_sweep_splits(self.end, to, SWEEP_PLANARITY)
+            .map_or(Vec::new(), |s| s.iter().map(Vec::len).collect())
     }
 
     /// Cuts what deferred steps left (nothing when none were): the crack then ends at the
@@ -201,19 +230,29 @@ impl Incision {
         &mut self,
         cut: impl FnMut(&CutPolygon) -> Result<(), E>,
     ) -> Result<bool, E> {
-        self.cut_to(self.blade, cut)
+        self.catch_up_split(0, cut)
+    }
+
+    /// [`catch_up`](Self::catch_up) cutting the `split`th way of splitting the sweep.
+    fn catch_up_split<E: From<PolygonError>>(
+        &mut self,
+        split: usize,
+        cut: impl FnMut(&CutPolygon) -> Result<(), E>,
+    ) -> Result<bool, E> {
+        self.cut_to(self.blade, split, cut)
     }
 
     fn cut_to<E: From<PolygonError>>(
         &mut self,
         to: Blade,
+        split: usize,
         mut cut: impl FnMut(&CutPolygon) -> Result<(), E>,
     ) -> Result<bool, E> {
         if to == self.end {
             self.blade = to;
             return Ok(false);
         }
-        for polygon in &scalpel_sweep(self.end, to, SWEEP_PLANARITY)? {
+        for polygon in &scalpel_sweep_splits(self.end, to, SWEEP_PLANARITY)?.swap_remove(split) {
             cut(polygon)?;
         }
         self.blade = to;
@@ -227,6 +266,10 @@ impl Incision {
 #[derive(Clone, Debug, Default)]
 pub struct ScalpelStep {
     pub cuts: Vec<MtCutStats>,
+    /// Which way of splitting the sweep was cut ([`scalpel_sweep_splits`]): 0, the first
+    /// ([`crate::geom::scalpel_sweep`]'s), unless the MT refused those before it (see
+    /// [`Scalpel::step`]).
+    pub split: usize,
     /// The blade moved less than the scalpel's `min_advance` from where the crack ends:
     /// nothing was cut, and a later step (or [`Scalpel::catch_up`]) cuts the area.
     pub deferred: bool,
@@ -276,7 +319,10 @@ impl Scalpel {
 
     /// Moves the blade to `to`, cutting the area swept since the crack's end, or deferring
     /// the step (see [`Scalpel::set_min_advance`]). A blade that did not move cuts
-    /// nothing. On error the blade and the MT stay as they were, byte for byte, also when
+    /// nothing. A sweep the MT refuses ([`CutError::MtInconsistent`]) is cut as its next
+    /// split ([`scalpel_sweep_splits`]; the module docs' limits), and the step refused,
+    /// with the first split's error, only when none is taken. On error the blade and the
+    /// MT stay as they were, byte for byte, also when
     /// the second triangle of a non-planar sweep is refused after the first was cut: the
     /// step then goes back to a copy of the cutter taken before the first. The copy is
     /// taken for non-planar steps only and costs in proportion to the MT: 0.4–1.4 ms on
@@ -286,13 +332,16 @@ impl Scalpel {
         if to == self.incision.blade() {
             return Ok(ScalpelStep {
                 cuts: Vec::new(),
+                split: 0,
                 deferred: self.incision.is_behind(),
             });
         }
-        let polygons = self.incision.polygons_to(to, false);
-        let cuts = self.whole_step(polygons, |incision, cut| incision.step(to, cut))?;
+        let splits = self.incision.splits_to(to, false);
+        let (cuts, split) =
+            self.whole_step(&splits, |incision, k, cut| incision.step_split(to, k, cut))?;
         Ok(ScalpelStep {
             cuts,
+            split,
             // A step that cut leaves the crack at the blade.
             deferred: self.incision.is_behind(),
         })
@@ -301,10 +350,12 @@ impl Scalpel {
     /// Cuts the area deferred steps left, so the crack ends at the blade (at the end of a
     /// path); nothing when none was deferred. On error, as [`step`](Self::step).
     pub fn catch_up(&mut self) -> Result<ScalpelStep, ScalpelError> {
-        let polygons = self.incision.polygons_to(self.incision.blade(), true);
-        let cuts = self.whole_step(polygons, |incision, cut| incision.catch_up(cut))?;
+        let splits = self.incision.splits_to(self.incision.blade(), true);
+        let (cuts, split) =
+            self.whole_step(&splits, |incision, k, cut| incision.catch_up_split(k, cut))?;
         Ok(ScalpelStep {
             cuts,
+            split,
             deferred: false,
         })
     }
@@ -312,28 +363,51 @@ impl Scalpel {
     /// Runs `step` on the incision with the cutter's cut, all of it or none: with more
     /// than one polygon to cut, a copy of the cutter is taken first and put back when a
     /// later polygon fails after an earlier one was cut (a polygon that fails alone gives
-    /// its cut back itself, [`MtCutter::cut`]).
+    /// its cut back itself, [`MtCutter::cut`]). `splits` are the polygon counts of the
+    /// sweep's splits: when the MT refuses the first ([`CutError::MtInconsistent`]), the
+    /// others are tried in turn; when none is taken, the first one's refusal is returned
+    /// (that of [`crate::geom::scalpel_sweep`]'s polygons). Returns the cuts and the split
+    /// cut.
     fn whole_step(
         &mut self,
-        polygons: usize,
-        step: impl FnOnce(
+        splits: &[usize],
+        mut step: impl FnMut(
             &mut Incision,
+            usize,
             &mut dyn FnMut(&CutPolygon) -> Result<(), ScalpelError>,
         ) -> Result<bool, ScalpelError>,
-    ) -> Result<Vec<MtCutStats>, ScalpelError> {
-        let saved = (polygons > 1).then(|| self.cutter.snapshot());
-        let mut cuts = Vec::new();
-        let result = step(
-            &mut self.incision,
-            &mut cut_into(&mut self.cutter, &mut cuts),
-        );
-        match result {
-            Ok(_) => Ok(cuts),
-            Err(e) => {
-                if let Some(saved) = saved.filter(|_| !cuts.is_empty()) {
-                    self.cutter = saved;
+    ) -> Result<(Vec<MtCutStats>, usize), ScalpelError> {
+        let mut k = 0;
+        let mut first_refusal = None;
+        loop {
+            let saved = (splits.get(k).copied().unwrap_or(0) > 1).then(|| self.cutter.snapshot());
+            let mut cuts = Vec::new();
+            let result = step(
+                &mut self.incision,
+                k,
+                &mut cut_into(&mut self.cutter, &mut cuts),
+            );
+            match result {
+                Ok(_) => return Ok((cuts, k)),
+                Err(e) => {
+                    if let Some(saved) = saved.filter(|_| !cuts.is_empty()) {
+                        self.cutter = saved;
+                    }
+                    // Another split is tried once the first was refused, whatever stops
+                    // the later ones; the first's refusal is what the step reports.
+                    let first = match first_refusal.take() {
+                        Some(first) => first,
+                        None if matches!(e, ScalpelError::Cut(CutError::MtInconsistent { .. })) => {
+                            e
+                        }
+                        None => return Err(e),
+                    };
+                    if k + 1 >= splits.len() {
+                        return Err(first);
+                    }
+                    first_refusal = Some(first);
+                    k += 1;
                 }
-                Err(e)
             }
         }
     }

@@ -16,7 +16,7 @@ mod tolerance;
 pub use plane::Plane;
 pub use polygon::{
     CutPolygon, MAX_POLYGON_POINTS, PLANE_SNAP, PLANE_SNAP_ANGLE, PolygonError, SWEEP_PLANARITY,
-    scalpel_sweep,
+    scalpel_sweep, scalpel_sweep_splits,
 };
 pub(crate) use polygon::{check_points, lies_in_plane, snap_to_plane};
 pub use predicates::{

@@ -494,46 +494,74 @@ pub(crate) fn check_points(points: &[DVec3]) -> Result<(), PolygonError> {
 /// quadrilateral when it is planar (within `planarity` of its size) and convex; otherwise
 /// two triangles (along the shorter diagonal, or from the reflex corner of a planar
 /// non-convex quadrilateral). Zero-area triangles (an end that did not move) are dropped.
+/// The first of [`scalpel_sweep_splits`].
 pub fn scalpel_sweep(
     start: [DVec3; 2],
     end: [DVec3; 2],
     planarity: Tolerance,
 ) -> Result<Vec<CutPolygon>, PolygonError> {
+    scalpel_sweep_splits(start, end, planarity).map(|mut splits| splits.swap_remove(0))
+}
+
+/// Every way of cutting what [`scalpel_sweep`] cuts, its own first: one quadrilateral or
+/// triangle alone; two triangles along the shorter diagonal, then along the longer one
+/// (when its triangles do not fold over each other: a planar non-convex quadrilateral
+/// splits at its reflex corner only), then each such pair in the other order. A
+/// multiresolution model may refuse the second of two triangles where it meets the first
+/// at an angle and take another split of the same sweep (`mtcut::cut::Scalpel::step`):
+/// the area cut is the same up to the triangles' fold.
+pub fn scalpel_sweep_splits(
+    start: [DVec3; 2],
+    end: [DVec3; 2],
+    planarity: Tolerance,
+) -> Result<Vec<Vec<CutPolygon>>, PolygonError> {
     let quad = [start[0], start[1], end[1], end[0]];
     check_points(&quad)?;
     match (start[0] == end[0], start[1] == end[1]) {
         (true, true) => return Err(PolygonError::Degenerate),
-        (true, false) => return CutPolygon::with_tolerance(&quad[..3], planarity).map(|p| vec![p]),
+        (true, false) => {
+            return CutPolygon::with_tolerance(&quad[..3], planarity).map(|p| vec![vec![p]]);
+        }
         (false, true) => {
             return CutPolygon::with_tolerance(&[quad[0], quad[1], quad[3]], planarity)
-                .map(|p| vec![p]);
+                .map(|p| vec![vec![p]]);
         }
         (false, false) => {}
     }
     if let Ok(p) = CutPolygon::with_tolerance(&quad, planarity) {
-        return Ok(vec![p]);
+        return Ok(vec![vec![p]]);
     }
-    // Two triangles: along the shorter diagonal first; a planar non-convex quadrilateral
-    // only splits along the diagonal at its reflex corner (the other gives triangles facing
-    // opposite ways), and one whose both splits face opposite ways folds over itself.
+    // A planar non-convex quadrilateral only splits along the diagonal at its reflex
+    // corner (the other gives triangles facing opposite ways), and one whose both splits
+    // face opposite ways folds over itself.
     let shorter = if quad[0].distance(quad[2]) <= quad[1].distance(quad[3]) {
         0
     } else {
         1
     };
     let mut last = PolygonError::FoldedSweep;
+    let mut splits = Vec::with_capacity(4);
     for k in [shorter, 1 - shorter] {
         let tris = [
             [quad[k], quad[k + 1], quad[k + 2]],
             [quad[k], quad[k + 2], quad[(k + 3) % 4]],
         ];
         match two_triangles(&tris, planarity) {
-            Ok(out) if same_orientation(&out) => return Ok(out),
+            Ok(out) if same_orientation(&out) => splits.push(out),
             Ok(_) => {}
             Err(e) => last = e,
         }
     }
-    Err(last)
+    if splits.is_empty() {
+        return Err(last);
+    }
+    let reversed: Vec<Vec<CutPolygon>> = splits
+        .iter()
+        .filter(|s| s.len() == 2)
+        .map(|s| vec![s[1].clone(), s[0].clone()])
+        .collect();
+    splits.extend(reversed);
+    Ok(splits)
 }
 
 fn two_triangles(
@@ -725,5 +753,42 @@ mod tests {
         );
         assert_eq!(crossed, Err(PolygonError::FoldedSweep));
         assert!(scalpel_sweep([DVec3::ZERO, DVec3::X], [DVec3::ZERO, DVec3::X], z).is_err());
+    }
+
+    #[test]
+    fn a_twisted_sweep_splits_four_ways_and_a_flat_one_one_way() {
+        let z = Tolerance::new(1e-9).unwrap();
+        let (start, end) = (
+            [DVec3::ZERO, DVec3::X],
+            [DVec3::Y, DVec3::new(1.0, 1.0, 0.5)],
+        );
+        let splits = scalpel_sweep_splits(start, end, z).unwrap();
+        assert_eq!(splits[0], scalpel_sweep(start, end, z).unwrap());
+        assert_eq!(splits.len(), 4);
+        let corners = |s: &[CutPolygon]| -> Vec<Vec<DVec3>> {
+            s.iter().map(|p| p.points().to_vec()).collect()
+        };
+        // Along the other diagonal: no triangle of the first split.
+        assert!(
+            corners(&splits[1])
+                .iter()
+                .all(|t| !corners(&splits[0]).contains(t))
+        );
+        // Then each pair in the other order.
+        for (k, r) in [(0, 2), (1, 3)] {
+            let mut back = corners(&splits[k]);
+            back.reverse();
+            assert_eq!(corners(&splits[r]), back);
+        }
+        // Each: two triangles of the quadrilateral's corners, sharing a diagonal.
+        let quad = [start[0], start[1], end[1], end[0]];
+        for s in &splits {
+            let [t0, t1] = [&s[0], &s[1]].map(|p| p.points().to_vec());
+            assert!(t0.iter().chain(&t1).all(|p| quad.contains(p)));
+            assert!(quad.iter().all(|p| t0.contains(p) || t1.contains(p)));
+            assert_eq!(t0.iter().filter(|p| t1.contains(p)).count(), 2);
+        }
+        let flat = scalpel_sweep_splits(start, [DVec3::Y, DVec3::new(1.0, 1.0, 0.0)], z).unwrap();
+        assert_eq!(flat.len(), 1);
     }
 }

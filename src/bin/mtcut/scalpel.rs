@@ -13,7 +13,11 @@
 //! ([`mtcut::cut::LiveMt`], paper §5): the current mesh is cut first (and written), then
 //! the rest of the model; the statistics give both times.
 //!
-//! A step the model refuses (see [`mtcut::cut::scalpel`]'s limits: a path that turns or
+//! A sweep cut as two triangles (a blade that tilts as it moves) that the model refuses is
+//! cut as another split of it first ([`Scalpel::step`]: along the other diagonal, each pair
+//! in either order; `split` per step in `--json`, 0 for the first), without
+//! `--time-critical` (whose current mesh is cut before the model is). A step the model
+//! refuses (see [`mtcut::cut::scalpel`]'s limits: a path that turns or
 //! tilts, whose sweeps meet at an angle, is refused by the MT cut where it would break the
 //! coarser levels) or that leaves an invalid model or current mesh stops the run with an
 //! error naming the step and the meshes written: the steps before it (time-critical, that
@@ -247,6 +251,10 @@ pub fn run(args: Args) -> CliResult {
         let mut step = skip(scalpel.step(to))?;
         if k + 1 == blades.len() {
             let rest = skip(scalpel.catch_up())?;
+            // At most one of the two cut: the step, or the catch-up of a deferred step.
+            if !rest.cuts.is_empty() {
+                step.split = rest.split;
+            }
             step.cuts.extend(rest.cuts);
             step.deferred = rest.deferred;
         }
@@ -272,6 +280,7 @@ pub fn run(args: Args) -> CliResult {
                 "budget_met": budget_met,
                 "deferred": step.deferred,
                 "polygons": step.cuts.len(),
+                "split": step.split,
                 "tets_cut": step.tets_cut(),
                 "cuts": step.cuts.iter().map(|s| s.to_json()).collect::<Vec<_>>(),
                 "components": components,
@@ -284,11 +293,16 @@ pub fn run(args: Args) -> CliResult {
                  {validate_seconds:.3} s)",
                 step.cuts.len(),
                 if refusal.is_some() {
-                    " (refused, skipped)"
+                    " (refused, skipped)".to_string()
                 } else if step.deferred {
-                    " (deferred)"
+                    " (deferred)".to_string()
+                } else if step.split > 0 {
+                    format!(
+                        " (split {} of the sweep: the ones before refused)",
+                        step.split
+                    )
                 } else {
-                    ""
+                    String::new()
                 },
                 step.tets_cut(),
                 components,
