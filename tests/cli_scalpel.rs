@@ -238,6 +238,44 @@ fn a_refused_split_of_a_sweep_is_cut_as_another() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A shallow incision (from above liver down to mid-depth) turning by 4° per step: the
+/// model refuses some of the steps continuing the last at that angle; with
+/// `--skip-refused` each is cut again from a tenth of the way into it, as a new crack
+/// (`gap_steps`, and `gap` 0.1 in the step), leaving a bridge that wide rather than the
+/// whole step uncut, the model valid after every step.
+#[test]
+fn skip_refused_cuts_a_refused_step_again_past_a_gap() {
+    let dir = scratch("cli_scalpel_gap");
+    let model = dir.join("liver.mt");
+    ok(&["build", s(&data("liver.node")), "-o", s(&model)]);
+    let b = Aabb::from_points(Mt::load(&model).unwrap().positions());
+    let depth = b.min.z + 0.45 * (b.max.z - b.min.z);
+    let blades: Vec<[[f64; 3]; 2]> = (0..18)
+        .map(|k| {
+            let [_, top] = blades::on_arc(&b, -8.0 + 4.0 * k as f64);
+            [top.to_array(), [top.x, top.y, depth]]
+        })
+        .collect();
+    let path = dir.join("turn.json");
+    write_path(&path, &blades);
+    let (out, saved) = (dir.join("series"), dir.join("cut.mt"));
+    let mut args = scalpel_args(&model, &path, &out, &saved, &[]);
+    args.extend(["--skip-refused", "--json"]);
+    let j = json(&args);
+    let refused = j["refused_steps"].as_array().expect("refused_steps");
+    assert!(!refused.is_empty(), "no step refused: {j}");
+    assert_eq!(j["gap_steps"].as_array(), Some(refused), "{j}");
+    let steps = j["steps"].as_array().expect("steps");
+    for k in refused {
+        let step = &steps[k.as_u64().expect("a step") as usize - 1];
+        assert_eq!(step["gap"].as_f64(), Some(0.1), "{step}");
+        assert!(step["tets_cut"].as_u64() > Some(0), "{step}");
+    }
+    assert!(Mt::load(&saved).expect("saved").validate().is_valid());
+    read_valid(&out.join("step-0017.vtu"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// The same tilting blade with `--skip-refused`: the run goes on past the steps the model
 /// refuses (step 9 first), warning on stderr and listing them (`refused_steps`), the
 /// blade moving on without cutting, so that a later step cuts again; it writes one valid

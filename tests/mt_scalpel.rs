@@ -354,6 +354,60 @@ fn a_refused_split_of_a_sweep_gives_way_to_another() {
     }
 }
 
+/// After a step the MT refuses, `Scalpel::step_after_gap` begins a new crack a tenth of the
+/// way into it and cuts from there (a bridge that wide left in the incision): liver's
+/// shallow incision turning by 4° per step (a known limit: some steps continuing the last
+/// are refused). The crack then ends at the blade, the MT valid, extractions crossed by
+/// none of the polygons cut; a gap not strictly between 0 and 1 is refused, the scalpel
+/// as it was.
+#[test]
+fn a_refused_step_is_cut_again_past_a_gap() {
+    let model = mt_common::built("liver").1.clone();
+    let volumes = extreme_volumes(&model);
+    let b = Aabb::from_points(model.positions());
+    let depth = b.min.z + 0.45 * (b.max.z - b.min.z);
+    let path: Vec<Blade> = (0..18)
+        .map(|k| {
+            let [_, top] = on_arc(&b, -8.0 + 4.0 * k as f64);
+            [top, DVec3::new(top.x, top.y, depth)]
+        })
+        .collect();
+    let split = |from: Blade, to: Blade, k: usize| {
+        scalpel_sweep_splits(from, to, SWEEP_PLANARITY)
+            .expect("sweep")
+            .swap_remove(k)
+    };
+    let mut scalpel = Scalpel::new(model, path[0]).expect("scalpel");
+    let mut applied = Vec::new();
+    for (k, &to) in path.iter().enumerate().skip(1) {
+        let from = scalpel.incision().end();
+        match scalpel.step(to) {
+            Ok(step) => applied.extend(split(from, to, step.split)),
+            Err(ScalpelError::Cut(CutError::MtInconsistent { .. })) => {
+                for bad in [0.0, 1.0, -0.5, f64::NAN] {
+                    let r = scalpel.step_after_gap(to, bad);
+                    assert!(matches!(r, Err(ScalpelError::Gap(_))), "gap {bad}: {r:?}");
+                    assert_eq!(scalpel.incision().end(), from);
+                }
+                let step = scalpel
+                    .step_after_gap(to, 0.1)
+                    .unwrap_or_else(|e| panic!("step {k}, from a tenth of the way: {e}"));
+                assert!(step.tets_cut() > 0, "step {k}");
+                assert_eq!(scalpel.incision().end(), to);
+                let start = [from[0].lerp(to[0], 0.1), from[1].lerp(to[1], 0.1)];
+                applied.extend(split(start, to, step.split));
+                let req = requests(scalpel.mt(), 10, 1, &mut Rng(k as u64));
+                if let Err(m) = check_after_cut(scalpel.cutter(), volumes, &applied, &req) {
+                    panic!("liver, step {k}, from a tenth of the way: {m}");
+                }
+                return;
+            }
+            Err(e) => panic!("liver, step {k}: {e}"),
+        }
+    }
+    panic!("no step of the shallow turning incision was refused");
+}
+
 /// The random scalpel paths of tests/cut_scalpel.rs (turning, leaning, through the body or
 /// stopping inside it), which the plain-mesh engine takes whole, moved through each shared
 /// mesh's MT by a [`Scalpel`]: a step the MT refuses is skipped (the MT as it was; the next

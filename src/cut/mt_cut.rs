@@ -225,8 +225,9 @@
 //!   each; a turning blade ending inside fandisk works. Still refused: some steps at
 //!   steeper angles (the same tilt in 20 steps, on the three meshes) and of a turning
 //!   blade ending inside pinion or liver (a shallow incision turning by 4°, 8° and 16°
-//!   per step, each refused step skipped: 1, 1 and 1 of its 17 steps on pinion, 7, 4 and
-//!   2 on liver, measured again in stop 41; 3, 1, 1 and 8, 4, 2 some stops before; 5, 2
+//!   per step, each refused step skipped: 2, 1 and 1 of its 17 steps on pinion, 6, 4 and
+//!   2 on liver, measured again in stop 64; 1, 1, 1 and 7, 4, 2 in stop 41; 3, 1, 1 and
+//!   8, 4, 2 some stops before; 5, 2
 //!   and 1 on pinion before tets were joined), where one level needs a tip whole and another
 //!   needs it split, which one copy per tip cannot give. Tried and dropped: deciding the
 //!   copies by the groups tets form around each tip (joined through faces), the same over

@@ -22,14 +22,17 @@
 //! coarser levels) or that leaves an invalid model or current mesh stops the run with an
 //! error naming the step and the meshes written: the steps before it (time-critical, that
 //! step's current mesh too, written before the model's cut) stay written and listed, and
-//! `--save` writes nothing. With `--skip-refused` a refused step is skipped instead: the
-//! model stays as it was, the step's mesh is written (unchanged) so the series keeps one
-//! mesh per time step, the blade moves on without cutting ([`Scalpel::skip_to`]: the next
-//! step begins a crack where the blade is), and the run goes on; time-critical, the
-//! refused cut is dropped from the model and from the current mesh, which is extracted
-//! again ([`LiveMt::process_pending`]). Either way the refused step's area stays uncut (a
-//! bridge in the incision). The summary lists the steps skipped (a warning on stderr,
-//! `refused_steps` in `--json`). A step that leaves an invalid model or mesh still stops
+//! `--save` writes nothing. With `--skip-refused` the run goes on instead: a new crack
+//! is begun a tenth of the way into the refused step and cut from there
+//! ([`Scalpel::step_after_gap`]; `gap` 0.1 for that step in `--json`), leaving a bridge
+//! that wide in the incision, and when that is refused too the step is skipped: the model
+//! stays as it was, the step's mesh is written (unchanged) so the series keeps one mesh
+//! per time step, and the blade moves on without cutting ([`Scalpel::skip_to`]: the next
+//! step begins a crack where the blade is). Time-critical, a refused cut is dropped from
+//! the model and from the current mesh, which is extracted again
+//! ([`LiveMt::process_pending`]), its area left uncut (not cut again from a tenth of the
+//! way: the current mesh was cut first). The summary lists the refused steps (a warning
+//! on stderr, `refused_steps` in `--json`). A step that leaves an invalid model or mesh still stops
 //! the run.
 //!
 //! `--min-advance F` defers a step until the blade is F × the median edge length of the
@@ -94,14 +97,19 @@ pub struct Args {
     /// ends (0: cut every step); the last step cuts what is left.
     #[arg(long, value_name = "F", default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse::min_advance)]
     min_advance: f64,
-    /// Skip a step the model refuses (the model as it was; see above) instead of stopping
-    /// the run, and report the steps skipped. For a model only.
+    /// Go on past a step the model refuses (the model as it was; see above) instead of
+    /// stopping the run: cut it again from a tenth of the way into it, or skip it when that
+    /// is refused too, and report those steps. For a model only.
     #[arg(long)]
     skip_refused: bool,
     /// Print the statistics as one JSON object.
     #[arg(long)]
     json: bool,
 }
+
+/// The fraction of a refused step left uncut when a new crack is begun past it
+/// (`--skip-refused`; [`Scalpel::step_after_gap`]).
+const RESTART_GAP: f64 = 0.1;
 
 /// Whether `e`, an error of a scalpel step, is the model refusing the cut (the model as
 /// it was), which `--skip-refused` skips.
@@ -235,22 +243,44 @@ pub fn run(args: Args) -> CliResult {
         };
     write_step(0, scalpel.mt(), &mut series)?;
     let start = Instant::now();
-    let mut refused_steps: Vec<usize> = Vec::new();
+    let (mut refused_steps, mut gap_steps): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
     for (k, &to) in blades.iter().enumerate().skip(1) {
-        // A refused step, skipped with --skip-refused, leaves the model as it was; the
-        // blade then moves on without cutting (`Scalpel::skip_to`), so that the next step
-        // begins a crack at the blade rather than sweeping again from the refused angle.
+        // A refused step, with --skip-refused, leaves the model as it was; a new crack is
+        // then begun a tenth of the way into the step and cut from there
+        // (`Scalpel::step_after_gap`: a bridge that wide instead of the whole step), or,
+        // when that is refused too, the blade moves on without cutting
+        // (`Scalpel::skip_to`), so that the next step begins a crack at the blade rather
+        // than sweeping again from the refused angle.
         let mut refusal: Option<String> = None;
-        let mut skip = |r: Result<ScalpelStep, ScalpelError>| match r {
-            Err(e) if args.skip_refused && is_refusal(&e) => {
-                refusal.get_or_insert(e.to_string());
-                Ok(ScalpelStep::default())
-            }
-            r => r.map_err(|e| series.failed(k, &e)),
+        let mut gap = None;
+        let refused = |r: &Result<ScalpelStep, ScalpelError>| {
+            args.skip_refused && r.as_ref().is_err_and(is_refusal)
         };
-        let mut step = skip(scalpel.step(to))?;
+        let r = scalpel.step(to);
+        let mut step = if refused(&r) {
+            refusal = r.err().map(|e| e.to_string());
+            match scalpel.step_after_gap(to, RESTART_GAP) {
+                Ok(s) => {
+                    gap = Some(RESTART_GAP);
+                    s
+                }
+                Err(_) => {
+                    scalpel.skip_to(to).map_err(|e| series.failed(k, &e))?;
+                    ScalpelStep::default()
+                }
+            }
+        } else {
+            r.map_err(|e| series.failed(k, &e))?
+        };
         if k + 1 == blades.len() {
-            let rest = skip(scalpel.catch_up())?;
+            let r = scalpel.catch_up();
+            let rest = if refused(&r) {
+                refusal = refusal.or(r.err().map(|e| e.to_string()));
+                scalpel.skip_to(to).map_err(|e| series.failed(k, &e))?;
+                ScalpelStep::default()
+            } else {
+                r.map_err(|e| series.failed(k, &e))?
+            };
             // At most one of the two cut: the step, or the catch-up of a deferred step.
             if !rest.cuts.is_empty() {
                 step.split = rest.split;
@@ -259,10 +289,20 @@ pub fn run(args: Args) -> CliResult {
             step.deferred = rest.deferred;
         }
         if let Some(e) = &refusal {
-            scalpel.skip_to(to).map_err(|e| series.failed(k, &e))?;
             refused_steps.push(k);
+            if gap.is_some() {
+                gap_steps.push(k);
+            }
             if !args.json {
-                eprintln!("mtcut: warning: step {k} skipped (its area left uncut): {e}");
+                match gap {
+                    Some(g) => eprintln!(
+                        "mtcut: warning: step {k} refused; cut again from {g} of the way into \
+                         it (the rest left uncut, a bridge): {e}"
+                    ),
+                    None => {
+                        eprintln!("mtcut: warning: step {k} skipped (its area left uncut): {e}")
+                    }
+                }
             }
         }
         let t_validate = Instant::now();
@@ -277,6 +317,7 @@ pub fn run(args: Args) -> CliResult {
             steps.push(json!({
                 "step": k,
                 "refused": refusal,
+                "gap": gap,
                 "budget_met": budget_met,
                 "deferred": step.deferred,
                 "polygons": step.cuts.len(),
@@ -292,7 +333,9 @@ pub fn run(args: Args) -> CliResult {
                 "step {k:<4}  {} polygon(s){}, {} tets cut, {} component(s), {:.4} s (validate \
                  {validate_seconds:.3} s)",
                 step.cuts.len(),
-                if refusal.is_some() {
+                if let Some(g) = gap {
+                    format!(" (refused; cut from {g} of the way into it, a bridge left)")
+                } else if refusal.is_some() {
                     " (refused, skipped)".to_string()
                 } else if step.deferred {
                     " (deferred)".to_string()
@@ -318,6 +361,7 @@ pub fn run(args: Args) -> CliResult {
         &series,
         seconds,
         &refused_steps,
+        &gap_steps,
     )
 }
 
@@ -329,6 +373,7 @@ fn finish(
     series: &Series,
     seconds: f64,
     refused_steps: &[usize],
+    gap_steps: &[usize],
 ) -> CliResult {
     if let Some(save) = &args.save {
         mt.save(save)?;
@@ -343,6 +388,7 @@ fn finish(
                 "steps": steps,
                 "components": mt.nb_components(),
                 "refused_steps": refused_steps,
+                "gap_steps": gap_steps,
                 "valid": true,
                 "pvd": pvd.display().to_string(),
                 "saved": args.save.as_ref().map(|p| p.display().to_string()),
@@ -359,9 +405,13 @@ fn finish(
         } else {
             ""
         },
-        match refused_steps.len() {
-            0 => String::new(),
-            n => format!(", {n} refused and skipped ({refused_steps:?})"),
+        match (refused_steps.len(), gap_steps.len()) {
+            (0, _) => String::new(),
+            (n, 0) => format!(", {n} refused and skipped ({refused_steps:?})"),
+            (n, g) => format!(
+                ", {n} refused ({refused_steps:?}): {g} cut again from {RESTART_GAP} of the way \
+                 into them ({gap_steps:?}), the others skipped"
+            ),
         },
         mt.nb_components(),
         seconds
@@ -468,6 +518,7 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         &series,
         seconds,
         &refused_steps,
+        &[],
     )
 }
 
