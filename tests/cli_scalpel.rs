@@ -51,14 +51,14 @@ fn fandisk_model(dir: &Path) -> (std::path::PathBuf, Aabb) {
     (model, b)
 }
 
-/// Fandisk's model in `dir` and a path file of a blade tilting as it crosses it in 24
-/// steps (`blades::tilting_in`), whose ninth step the model refuses, however the sweep is
-/// split into triangles (in 20 steps, the eleventh was refused as the default split and
-/// taken as another).
-fn tilting_path(dir: &Path) -> (std::path::PathBuf, std::path::PathBuf) {
+/// Fandisk's model in `dir` and a path file of a blade tilting as it crosses it in
+/// `steps` steps (`blades::tilting_in`). In 24, the model refuses the ninth step however
+/// its sweep is split into triangles; in 20, it refuses the eleventh's default split and
+/// takes another.
+fn tilting_path(dir: &Path, steps: usize) -> (std::path::PathBuf, std::path::PathBuf) {
     let (model, b) = fandisk_model(dir);
-    let blades: Vec<[[f64; 3]; 2]> = (0..=24)
-        .map(|k| blades::tilting_in(&b, k, 24).map(|p| p.to_array()))
+    let blades: Vec<[[f64; 3]; 2]> = (0..=steps)
+        .map(|k| blades::tilting_in(&b, k, steps).map(|p| p.to_array()))
         .collect();
     let path = dir.join("tilt.json");
     write_path(&path, &blades);
@@ -178,7 +178,7 @@ fn bad_path_files_are_refused_by_name() {
 #[test]
 fn a_step_that_breaks_the_model_stops_the_run() {
     let dir = scratch("cli_scalpel_tilt");
-    let (model, path) = tilting_path(&dir);
+    let (model, path) = tilting_path(&dir, 24);
     let out = dir.join("series");
     let saved = dir.join("never.mt");
     let err = fails(
@@ -216,12 +216,7 @@ fn a_step_that_breaks_the_model_stops_the_run() {
 #[test]
 fn a_refused_split_of_a_sweep_is_cut_as_another() {
     let dir = scratch("cli_scalpel_split");
-    let (model, b) = fandisk_model(&dir);
-    let blades: Vec<[[f64; 3]; 2]> = (0..=20)
-        .map(|k| blades::tilting_in(&b, k, 20).map(|p| p.to_array()))
-        .collect();
-    let path = dir.join("tilt20.json");
-    write_path(&path, &blades);
+    let (model, path) = tilting_path(&dir, 20);
     let (out, saved) = (dir.join("series"), dir.join("cut.mt"));
     let mut args = scalpel_args(&model, &path, &out, &saved, &[]);
     let stdout = ok(&args);
@@ -249,12 +244,9 @@ fn skip_refused_cuts_a_refused_step_again_past_a_gap() {
     let model = dir.join("liver.mt");
     ok(&["build", s(&data("liver.node")), "-o", s(&model)]);
     let b = Aabb::from_points(Mt::load(&model).unwrap().positions());
-    let depth = b.min.z + 0.45 * (b.max.z - b.min.z);
-    let blades: Vec<[[f64; 3]; 2]> = (0..18)
-        .map(|k| {
-            let [_, top] = blades::on_arc(&b, -8.0 + 4.0 * k as f64);
-            [top.to_array(), [top.x, top.y, depth]]
-        })
+    let blades: Vec<[[f64; 3]; 2]> = blades::shallow_turning(&b, 4.0)
+        .into_iter()
+        .map(|blade| blade.map(|p| p.to_array()))
         .collect();
     let path = dir.join("turn.json");
     write_path(&path, &blades);
@@ -284,7 +276,7 @@ fn skip_refused_cuts_a_refused_step_again_past_a_gap() {
 #[test]
 fn skip_refused_goes_on_past_the_steps_the_model_refuses() {
     let dir = scratch("cli_scalpel_skip");
-    let (model, path) = tilting_path(&dir);
+    let (model, path) = tilting_path(&dir, 24);
     let saved = dir.join("skipped.mt");
     for (name, extra) in [("direct", &[][..]), ("live", &["--time-critical"][..])] {
         let out = dir.join(name);

@@ -15,7 +15,7 @@ mod cut_common;
 mod mt_common;
 mod mtcut_common;
 
-use blades::{on_arc, random_path, shallow_path, tilting, tilting_in};
+use blades::{on_arc, random_path, shallow_path, shallow_turning, tilting, tilting_in};
 use mtcut::cut::{
     Blade, Components, CutError, CutOptions, Cutter, MtCutter, Scalpel, ScalpelError,
 };
@@ -206,14 +206,7 @@ fn a_shallow_turning_incision_on_pinion_and_liver() {
 
 fn shallow_turning_incision(name: &'static str) {
     let mut run = Run::new(name);
-    let b = run.bounds();
-    let depth = b.min.z + 0.45 * (b.max.z - b.min.z);
-    let path: Vec<Blade> = (0..18)
-        .map(|k| {
-            let [_, top] = on_arc(&b, -8.0 + 8.0 * k as f64);
-            [top, DVec3::new(top.x, top.y, depth)]
-        })
-        .collect();
+    let path = shallow_turning(&run.bounds(), 8.0);
     run.sweep("shallow, turning", &path);
     assert_eq!(
         run.components(),
@@ -364,14 +357,7 @@ fn a_refused_split_of_a_sweep_gives_way_to_another() {
 fn a_refused_step_is_cut_again_past_a_gap() {
     let model = mt_common::built("liver").1.clone();
     let volumes = extreme_volumes(&model);
-    let b = Aabb::from_points(model.positions());
-    let depth = b.min.z + 0.45 * (b.max.z - b.min.z);
-    let path: Vec<Blade> = (0..18)
-        .map(|k| {
-            let [_, top] = on_arc(&b, -8.0 + 4.0 * k as f64);
-            [top, DVec3::new(top.x, top.y, depth)]
-        })
-        .collect();
+    let path = shallow_turning(&Aabb::from_points(model.positions()), 4.0);
     let split = |from: Blade, to: Blade, k: usize| {
         scalpel_sweep_splits(from, to, SWEEP_PLANARITY)
             .expect("sweep")

@@ -29,7 +29,9 @@
 //!   liver, some steps would break a fragment where the levels disagree on the last
 //!   crack's end. The MT cut checks each fragment it changed and refuses such a step
 //!   ([`CutError::MtInconsistent`]), the MT left as it was; the CLI stops there (or, with
-//!   `--skip-refused`, moves the blade on without cutting: [`Scalpel::skip_to`]).
+//!   `--skip-refused`, begins a new crack a tenth of the way into the step,
+//!   [`Scalpel::step_after_gap`], and when that is refused too moves the blade on without
+//!   cutting, [`Scalpel::skip_to`]).
 //! * **A refused sweep is cut as another split of it.** A non-planar sweep is two
 //!   triangles, the second continuing the first at an angle along a diagonal; where the
 //!   levels disagree at that diagonal, they often agree at the other. [`Scalpel::step`]

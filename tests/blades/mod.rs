@@ -25,6 +25,19 @@ pub fn on_arc(b: &Aabb, deg: f64) -> Blade {
     vertical(b, p.x, p.y)
 }
 
+/// A blade from above the body down to 45 % of its height, on [`on_arc`] turning by `deg`
+/// degrees per step from -8°: a shallow turning incision, its blade's edge inside the
+/// body; 17 steps.
+pub fn shallow_turning(b: &Aabb, deg: f64) -> Vec<Blade> {
+    let depth = b.min.z + 0.45 * (b.max.z - b.min.z);
+    (0..18)
+        .map(|k| {
+            let [_, top] = on_arc(b, -8.0 + deg * k as f64);
+            [top, DVec3::new(top.x, top.y, depth)]
+        })
+        .collect()
+}
+
 /// The blade of [`on_arc`] turning by 8° per step from -8°: `steps` sweeps, `steps + 1`
 /// positions.
 pub fn turning_by_8(b: &Aabb, steps: usize) -> Vec<Blade> {

@@ -32,8 +32,8 @@
 //! the model and from the current mesh, which is extracted again
 //! ([`LiveMt::process_pending`]), its area left uncut (not cut again from a tenth of the
 //! way: the current mesh was cut first). The summary lists the refused steps (a warning
-//! on stderr, `refused_steps` in `--json`). A step that leaves an invalid model or mesh still stops
-//! the run.
+//! on stderr, `refused_steps` in `--json`). A step that leaves an invalid model or mesh
+//! still stops the run.
 //!
 //! `--min-advance F` defers a step until the blade is F × the median edge length of the
 //! mesh (a model's finest mesh) from where the incision ends, then cuts all the area swept
