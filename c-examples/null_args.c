@@ -716,6 +716,16 @@ static void check_live(const mtcut_mesh *mesh) {
   UNTOUCHED(mtcut_live_pending_cuts(good) == 0);
   EXPECT(mtcut_live_cut(good, across, 3, &st), MTCUT_STATUS_OK);
   UNTOUCHED(mtcut_live_pending_cuts(good) == 1 && st.tets_cut > 0);
+  {
+    /* A scalpel sweep: NULL ends, and a blade that does not move (nothing swept). */
+    const double start[6] = {0.1, 0.2, -1.0, 0.1, 0.2, 2.0};
+    const double end[6] = {0.8, 0.3, -1.0, 0.8, 0.3, 2.0};
+    EXPECT(mtcut_live_scalpel_sweep(NULL, start, end, &st), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_live_scalpel_sweep(good, NULL, end, &st), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_live_scalpel_sweep(good, start, NULL, &st), MTCUT_STATUS_NULL_ARGUMENT);
+    EXPECT(mtcut_live_scalpel_sweep(good, start, start, &st), MTCUT_STATUS_INVALID_ARGUMENT);
+    UNTOUCHED(mtcut_live_pending_cuts(good) == 1);
+  }
 
   EXPECT(mtcut_live_set_resolution(NULL, NULL), MTCUT_STATUS_NULL_ARGUMENT);
   EXPECT(mtcut_live_set_resolution(good, NULL), MTCUT_STATUS_PENDING_WORK);

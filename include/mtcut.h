@@ -601,6 +601,12 @@ typedef struct mtcut_pending_report {
    * header without it pass a smaller `struct_size` and are not written it.
    */
   size_t refused;
+  /**
+   * Scalpel sweeps (`mtcut_live_scalpel_sweep`) the model refused as the current mesh
+   * was cut and took as another split of them; the current mesh was then replaced by
+   * its extraction (`remeshed` is 1). Added after `refused`, as it was.
+   */
+  size_t other_splits;
 } mtcut_pending_report;
 
 /**
@@ -1608,6 +1614,32 @@ mtcut_status mtcut_live_cut(struct mtcut_live *live,
                             const double *polygon_xyz,
                             size_t n_points,
                             struct mtcut_cut_stats *stats_or_null);
+
+/**
+ * The frontier-first cut of a scalpel's sweep in one time step, given where the body lies
+ * now: the blade from `start_xyz[0..3]` to `start_xyz[3..6]` at the start of the step and
+ * from `end_xyz[0..3]` to `end_xyz[3..6]` at its end (corresponding ends). The current mesh
+ * is cut with the polygons `mtcut_scalpel_sweep_polygons` gives (one quadrilateral, or two
+ * triangles), and the model is queued. For a body at rest (no positions set that differ
+ * from the rest positions), where the model refuses those polygons (two triangles meeting
+ * at an angle the coarser levels cannot take), `mtcut_live_process_pending` cuts it with
+ * another split of the same sweep (the other diagonal's triangles, or either pair in the
+ * other order) and replaces the current mesh by the model's extraction
+ * (`other_splits` in its report); calling `mtcut_live_cut` once per polygon gives up
+ * that step instead (`refused`). `stats_or_null` receives the current mesh's cuts added up
+ * (as `mtcut_live_cut` gives one's). A blade that does not move, a sweep folding over
+ * itself or a coordinate that is not finite gives `MTCUT_STATUS_INVALID_ARGUMENT`,
+ * nothing changed.
+ *
+ * # Safety
+ * `live` must be a live handle used by no other thread; `start_xyz` and `end_xyz`
+ * readable for 6 doubles each; a non-NULL `stats_or_null` writable with `struct_size`
+ * set.
+ */
+mtcut_status mtcut_live_scalpel_sweep(struct mtcut_live *live,
+                                      const double *start_xyz,
+                                      const double *end_xyz,
+                                      struct mtcut_cut_stats *stats_or_null);
 
 /**
  * Cuts the model with the queued cuts, oldest first, while the budget lasts: with

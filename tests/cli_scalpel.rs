@@ -213,6 +213,9 @@ fn a_step_that_breaks_the_model_stops_the_run() {
 /// The blade tilting across fandisk in 20 steps: its eleventh sweep's default triangles
 /// are refused by the model, another split of that sweep is taken (`split` in `--json`,
 /// named in the step's line), and the run cuts every step, the model valid and saved.
+/// Time-critical, the current mesh is cut with the default triangles and the model with
+/// the other split (`other_splits`), the current mesh then extracted again: no step
+/// refused either.
 #[test]
 fn a_refused_split_of_a_sweep_is_cut_as_another() {
     let dir = scratch("cli_scalpel_split");
@@ -230,6 +233,20 @@ fn a_refused_split_of_a_sweep_is_cut_as_another() {
     assert!(split(11) > 0, "{}", steps[10]);
     assert_eq!(split(10), 0, "{}", steps[9]);
     read_valid(&out.join("step-0020.vtu"));
+    let live = dir.join("live");
+    let args = scalpel_args(&model, &path, &live, &saved, &["--time-critical"]);
+    let stdout = ok(&args);
+    assert!(stdout.contains("another split"), "{stdout}");
+    let mut args = args;
+    args.push("--json");
+    let j = json(&args);
+    assert_eq!(j["refused_steps"].as_array().map(Vec::len), Some(0), "{j}");
+    let steps = j["steps"].as_array().expect("steps");
+    let step = &steps[10];
+    assert_eq!(step["other_splits"].as_u64(), Some(1), "{step}");
+    assert_eq!(step["remeshed"].as_bool(), Some(true), "{step}");
+    assert!(Mt::load(&saved).expect("saved").validate().is_valid());
+    read_valid(&live.join("step-0020.vtu"));
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -158,6 +158,18 @@ fn a_bent_body_is_cut_frontier_first_then_the_model_catches_up() {
     assert!(valid_mesh(&l));
 }
 
+/// The blade tilting as it crosses the live model's current mesh in 20 steps
+/// (tests/mt_scalpel.rs), whose steep steps the model refuses as their default triangles.
+fn tilting_path(l: &Live) -> Vec<mtcut::cut::Blade> {
+    let xyz = positions(l);
+    let corners: Vec<mtcut::geom::DVec3> = xyz
+        .chunks(3)
+        .map(|p| mtcut::geom::DVec3::new(p[0], p[1], p[2]))
+        .collect();
+    let b = mtcut::geom::Aabb::from_points(corners.iter());
+    (0..=20).map(|k| blades::tilting_in(&b, k, 20)).collect()
+}
+
 #[test]
 fn a_cut_the_model_refuses_is_counted_in_the_report() {
     // The blade tilting as it crosses fandisk in 20 steps (tests/mt_scalpel.rs): the model
@@ -166,13 +178,7 @@ fn a_cut_the_model_refuses_is_counted_in_the_report() {
     // the model's extraction: valid, every vertex named. A caller passing the report's
     // older size (without `refused`) is not written past `seconds`.
     let l = live();
-    let xyz = positions(&l);
-    let corners: Vec<mtcut::geom::DVec3> = xyz
-        .chunks(3)
-        .map(|p| mtcut::geom::DVec3::new(p[0], p[1], p[2]))
-        .collect();
-    let b = mtcut::geom::Aabb::from_points(corners.iter());
-    let path: Vec<mtcut::cut::Blade> = (0..=20).map(|k| blades::tilting_in(&b, k, 20)).collect();
+    let path = tilting_path(&l);
     let report = |size: usize| mtcut_pending_report {
         struct_size: size,
         refused: 777,
@@ -208,6 +214,76 @@ fn a_cut_the_model_refuses_is_counted_in_the_report() {
     let mut r = report(std::mem::offset_of!(mtcut_pending_report, refused));
     ok(unsafe { mtcut_live_process_pending(l.0, 0, 0.0, &mut r) });
     assert_eq!((r.cuts_done, r.refused), (1, 777), "{r:?}");
+}
+
+#[test]
+fn a_sweep_the_model_refuses_is_cut_as_another_split() {
+    // The same tilting blade given as whole sweeps (`mtcut_live_scalpel_sweep`): where the
+    // model refuses a sweep's two triangles it takes another split of the sweep, the
+    // current mesh replaced by its extraction. No step is refused; every mesh valid, every
+    // vertex named. A caller passing the report's older size (without `other_splits`) is
+    // not written it.
+    let l = live();
+    let path: Vec<[f64; 6]> = tilting_path(&l)
+        .into_iter()
+        .map(|[p, q]| [p.x, p.y, p.z, q.x, q.y, q.z])
+        .collect();
+    let (mut other_splits, mut tets_cut) = (Vec::new(), 0);
+    for (k, w) in path.windows(2).enumerate() {
+        let mut cs = mtcut_cut_stats {
+            struct_size: size_of::<mtcut_cut_stats>(),
+            ..Default::default()
+        };
+        ok(unsafe { mtcut_live_scalpel_sweep(l.0, w[0].as_ptr(), w[1].as_ptr(), &mut cs) });
+        assert!(
+            cs.seconds_cut > 0.0 && cs.tets_after > 0,
+            "step {k}: {cs:?}"
+        );
+        tets_cut += cs.tets_cut;
+        let mut r = mtcut_pending_report {
+            struct_size: size_of::<mtcut_pending_report>(),
+            ..Default::default()
+        };
+        ok(unsafe { mtcut_live_process_pending(l.0, 0, 0.0, &mut r) });
+        assert_eq!((r.cuts_left, r.refused), (0, 0), "step {k}: {r:?}");
+        if r.other_splits > 0 {
+            assert_eq!(r.remeshed, 1, "step {k}: {r:?}");
+            other_splits.push(k);
+        }
+        assert!(valid_mesh(&l), "step {k}");
+        assert!(!ids(&l).contains(&u32::MAX), "step {k}: a vertex not named");
+    }
+    // When MT cuts take the tilt's first splits, this test needs another path.
+    assert!(!other_splits.is_empty(), "no sweep cut as another split");
+    assert!(tets_cut > 1000, "{tets_cut} current tets cut");
+    // A blade that does not move sweeps nothing; NULL ends; the older report.
+    let (a, z) = (path[3], path[4]);
+    let s = unsafe { mtcut_live_scalpel_sweep(l.0, a.as_ptr(), a.as_ptr(), ptr::null_mut()) };
+    refused(
+        s,
+        MTCUT_STATUS_INVALID_ARGUMENT,
+        "mtcut_live_scalpel_sweep",
+        "start_xyz/end_xyz",
+    );
+    let s = unsafe { mtcut_live_scalpel_sweep(l.0, ptr::null(), z.as_ptr(), ptr::null_mut()) };
+    refused(
+        s,
+        MTCUT_STATUS_NULL_ARGUMENT,
+        "mtcut_live_scalpel_sweep",
+        "start_xyz",
+    );
+    assert_eq!(unsafe { mtcut_live_pending_cuts(l.0) }, 0);
+    let square = [
+        -5.0, -5.0, 0.01, 5.0, -5.0, 0.01, 5.0, 5.0, 0.01, -5.0, 5.0, 0.01,
+    ];
+    ok(unsafe { mtcut_live_cut(l.0, square.as_ptr(), 4, ptr::null_mut()) });
+    let mut r = mtcut_pending_report {
+        struct_size: std::mem::offset_of!(mtcut_pending_report, other_splits),
+        other_splits: 777,
+        ..Default::default()
+    };
+    ok(unsafe { mtcut_live_process_pending(l.0, 0, 0.0, &mut r) });
+    assert_eq!((r.cuts_done, r.other_splits), (1, 777), "{r:?}");
 }
 
 #[test]

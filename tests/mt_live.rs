@@ -9,7 +9,7 @@ mod mt_common;
 mod mtcut_common;
 
 use cut_common::{Kind, Rng, random_polygon};
-use mtcut::cut::{CutError, LiveError, LiveMt, MtCutter, PendingBudget};
+use mtcut::cut::{CutError, Incision, LiveError, LiveMt, MtCutter, PendingBudget, Scalpel};
 use mtcut::geom::{CutPolygon, DVec3, SWEEP_PLANARITY, scalpel_sweep};
 use mtcut::mesh::TetMesh;
 use mtcut::mt::{ExtractOptions, Mt};
@@ -467,6 +467,51 @@ fn a_cut_the_mt_refuses_is_dropped_and_the_current_mesh_extracted_again() {
     // When MT cuts take steeper tilts, this test needs another refused cut.
     assert!(refused > 0, "no cut refused");
     assert_eq!(after, 2, "no cut after the refused one");
+}
+
+/// The same tilting blade, each sweep given whole (`LiveMt::cut_sweep`, every split of it):
+/// where the MT refuses the first split (the 11th step's second triangle), it takes another
+/// as `Scalpel::step` does, the current mesh cut with the first replaced by the MT's
+/// extraction. No step is dropped, the MT is after every step what the direct scalpel
+/// makes of the same path (canonically), and both meshes are valid, the current one mapped
+/// back.
+#[test]
+fn a_sweep_the_mt_refuses_is_taken_as_another_split() {
+    let mut l = scalpel_live("fandisk");
+    let b = mtcut::geom::Aabb::from_points(l.mt().positions());
+    let path: Vec<_> = (0..=20).map(|k| blades::tilting_in(&b, k, 20)).collect();
+    let mut direct = Scalpel::new(mt_common::built("fandisk").1.clone(), path[0]).unwrap();
+    let mut incision = Incision::new(path[0], 0.0).expect("incision");
+    let mut other = Vec::new();
+    for (k, &to) in path.iter().enumerate().skip(1) {
+        let case = format!("fandisk step {k}");
+        let mut polygons = 0;
+        incision
+            .step_sweep(to, |splits| {
+                polygons = l.cut_sweep(&splits)?.len();
+                Ok::<_, LiveError>(())
+            })
+            .unwrap_or_else(|e| panic!("{case}: {e}"));
+        assert_eq!(l.pending_cuts(), polygons, "{case}");
+        let r = l
+            .process_pending(PendingBudget::All)
+            .unwrap_or_else(|e| panic!("{case}: {e}"));
+        assert!(r.refused.is_empty(), "{case}: {:?}", r.refused);
+        let step = direct
+            .step(to)
+            .unwrap_or_else(|e| panic!("{case}: direct: {e}"));
+        assert_eq!(r.other_splits, usize::from(step.split > 0), "{case}");
+        if r.other_splits > 0 {
+            assert!(r.remeshed, "{case}: {r:?}");
+            other.push(k);
+        }
+        assert!(
+            l.mt().canonical_form() == direct.mt().canonical_form(),
+            "{case}: the MT differs from the direct scalpel's"
+        );
+        check(&l, &case);
+    }
+    assert!(other.contains(&11), "steps cut as another split: {other:?}");
 }
 
 #[test]

@@ -42,8 +42,9 @@
 //!   of the blade's twisted sweep, no farther from the swept surface than the first; a
 //!   refused step costs up to four MT cuts and a copy of the cutter per split. The blade
 //!   tilting in 20 steps, whose 11th step was refused, takes every step so.
-//!   [`super::LiveMt`] does not do this: its current mesh is cut first, with the first
-//!   split.
+//!   [`super::LiveMt::cut_sweep`] does the same on a body at rest: its current mesh is
+//!   cut first, with the first split, and replaced by the MT's extraction when the MT
+//!   takes another.
 //! * Random paths (turning, leaning, through the body or ending inside it; the plain-mesh
 //!   engine takes every step of them, tests/cut_scalpel.rs) still meet refusals: 25, 28
 //!   and 29 of 100 paths on fandisk's, pinion's and liver's MTs have a step refused (46,
@@ -252,13 +253,49 @@ impl Incision {
         split: usize,
         mut cut: impl FnMut(&CutPolygon) -> Result<(), E>,
     ) -> Result<bool, E> {
+        self.sweep_to(to, |mut splits| {
+            splits.swap_remove(split).iter().try_for_each(&mut cut)
+        })
+    }
+
+    /// [`step`](Self::step), passing `cut` every way of splitting the sweep at once
+    /// ([`scalpel_sweep_splits`]: the first is what `step` cuts), for a cut that tries the
+    /// others itself when the first is refused ([`super::LiveMt::cut_sweep`]); `cut` is
+    /// not called when the step is deferred or the blade ends where the crack does.
+    pub fn step_sweep<E: From<PolygonError>>(
+        &mut self,
+        to: Blade,
+        cut: impl FnOnce(Vec<Vec<CutPolygon>>) -> Result<(), E>,
+    ) -> Result<bool, E> {
+        crate::geom::check_points(&to)?;
+        if self.defers(to) {
+            self.blade = to;
+            return Ok(false);
+        }
+        self.sweep_to(to, cut)
+    }
+
+    /// [`catch_up`](Self::catch_up), passing `cut` every split of the sweep as
+    /// [`step_sweep`](Self::step_sweep) does.
+    pub fn catch_up_sweep<E: From<PolygonError>>(
+        &mut self,
+        cut: impl FnOnce(Vec<Vec<CutPolygon>>) -> Result<(), E>,
+    ) -> Result<bool, E> {
+        self.sweep_to(self.blade, cut)
+    }
+
+    /// Cuts the sweep from where the crack ends to `to` by `cut`, given all its splits;
+    /// the crack then ends at `to`.
+    fn sweep_to<E: From<PolygonError>>(
+        &mut self,
+        to: Blade,
+        cut: impl FnOnce(Vec<Vec<CutPolygon>>) -> Result<(), E>,
+    ) -> Result<bool, E> {
         if to == self.end {
             self.blade = to;
             return Ok(false);
         }
-        for polygon in &scalpel_sweep_splits(self.end, to, SWEEP_PLANARITY)?.swap_remove(split) {
-            cut(polygon)?;
-        }
+        cut(scalpel_sweep_splits(self.end, to, SWEEP_PLANARITY)?)?;
         self.blade = to;
         self.end = to;
         Ok(true)

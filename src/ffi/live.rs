@@ -9,7 +9,7 @@ use super::mt::{extract_failure, mt_ref, mtcut_extract_options, mtcut_mt};
 use super::status::{Failure, FfiResult, MTCUT_STATUS_PENDING_WORK, mtcut_status};
 use super::versioned::{Versioned, VersionedOut, read_optional};
 use crate::cut::{CutError, LiveError, LiveMt, PendingBudget, Scalpel};
-use crate::geom::CutPolygon;
+use crate::geom::{CutPolygon, SWEEP_PLANARITY, scalpel_sweep_splits};
 use crate::mt::Mt;
 use std::mem::offset_of;
 use std::time::Duration;
@@ -306,6 +306,60 @@ pub unsafe extern "C" fn mtcut_live_cut(
     })
 }
 
+/// The frontier-first cut of a scalpel's sweep in one time step, given where the body lies
+/// now: the blade from `start_xyz[0..3]` to `start_xyz[3..6]` at the start of the step and
+/// from `end_xyz[0..3]` to `end_xyz[3..6]` at its end (corresponding ends). The current mesh
+/// is cut with the polygons `mtcut_scalpel_sweep_polygons` gives (one quadrilateral, or two
+/// triangles), and the model is queued. For a body at rest (no positions set that differ
+/// from the rest positions), where the model refuses those polygons (two triangles meeting
+/// at an angle the coarser levels cannot take), `mtcut_live_process_pending` cuts it with
+/// another split of the same sweep (the other diagonal's triangles, or either pair in the
+/// other order) and replaces the current mesh by the model's extraction
+/// (`other_splits` in its report); calling `mtcut_live_cut` once per polygon gives up
+/// that step instead (`refused`). `stats_or_null` receives the current mesh's cuts added up
+/// (as `mtcut_live_cut` gives one's). A blade that does not move, a sweep folding over
+/// itself or a coordinate that is not finite gives `MTCUT_STATUS_INVALID_ARGUMENT`,
+/// nothing changed.
+///
+/// # Safety
+/// `live` must be a live handle used by no other thread; `start_xyz` and `end_xyz`
+/// readable for 6 doubles each; a non-NULL `stats_or_null` writable with `struct_size`
+/// set.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn mtcut_live_scalpel_sweep(
+    live: *mut mtcut_live,
+    start_xyz: *const f64,
+    end_xyz: *const f64,
+    stats_or_null: *mut mtcut_cut_stats,
+) -> mtcut_status {
+    run("mtcut_live_scalpel_sweep", || {
+        // SAFETY: the caller's contract, forwarded to the checks.
+        let (live, start, end, stats) = unsafe {
+            (
+                live_mut(live)?,
+                points(start_xyz, 2, "start_xyz")?,
+                points(end_xyz, 2, "end_xyz")?,
+                Out::optional(stats_or_null, "stats_or_null")?,
+            )
+        };
+        let stats = stats.map(VersionedOut::new).transpose()?;
+        let splits = scalpel_sweep_splits([start[0], start[1]], [end[0], end[1]], SWEEP_PLANARITY)
+            .map_err(|e| polygon_failure(e, "start_xyz/end_xyz"))?;
+        let cuts = live.cut_sweep(&splits).map_err(live_failure)?;
+        if let Some(out) = stats {
+            let mut c = mtcut_cut_stats::default();
+            for cut in &cuts {
+                c.add(&cut.stats, 0.0);
+                c.polygons_moved_to_plane += usize::from(cut.moved_to_plane);
+            }
+            // As `mtcut_live_cut`'s: the whole calls' time.
+            c.seconds_cut = cuts.iter().map(|cut| cut.seconds).sum();
+            out.write(c);
+        }
+        Ok(())
+    })
+}
+
 /// What `mtcut_live_process_pending` did. A versioned struct: set `struct_size` to
 /// `sizeof(mtcut_pending_report)`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -332,6 +386,10 @@ pub struct mtcut_pending_report {
     /// its extraction (`remeshed` is 1). Added after `seconds`: callers built against a
     /// header without it pass a smaller `struct_size` and are not written it.
     pub refused: usize,
+    /// Scalpel sweeps (`mtcut_live_scalpel_sweep`) the model refused as the current mesh
+    /// was cut and took as another split of them; the current mesh was then replaced by
+    /// its extraction (`remeshed` is 1). Added after `refused`, as it was.
+    pub other_splits: usize,
 }
 
 // SAFETY: repr(C), `struct_size: usize` first; FIRST_SIZE is within the struct.
@@ -386,6 +444,7 @@ pub unsafe extern "C" fn mtcut_live_process_pending(
                 folded: r.folded,
                 seconds: r.seconds,
                 refused: r.refused.len(),
+                other_splits: r.other_splits,
             });
         }
         Ok(())

@@ -15,8 +15,10 @@
 //!
 //! A sweep cut as two triangles (a blade that tilts as it moves) that the model refuses is
 //! cut as another split of it first ([`Scalpel::step`]: along the other diagonal, each pair
-//! in either order; `split` per step in `--json`, 0 for the first), without
-//! `--time-critical` (whose current mesh is cut before the model is). A step the model
+//! in either order; `split` per step in `--json`, 0 for the first). With `--time-critical`
+//! the current mesh is cut with the first split, and the model with the first it takes
+//! ([`LiveMt::cut_sweep`]): when that is another, the current mesh is replaced by the
+//! model's extraction (`other_splits` 1 and `remeshed` in the step's `--json`). A step the model
 //! refuses (see [`mtcut::cut::scalpel`]'s limits: a path that turns or
 //! tilts, whose sweeps meet at an angle, is refused by the MT cut where it would break the
 //! coarser levels) or that leaves an invalid model or current mesh stops the run with an
@@ -435,19 +437,20 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
     let mut refused_steps: Vec<usize> = Vec::new();
     for (k, &to) in blades.iter().enumerate().skip(1) {
         let (mut polygons, mut frontier_s, mut tets_cut) = (0, 0.0, 0);
-        let mut cut = |polygon: &CutPolygon| -> Result<(), Box<dyn std::error::Error>> {
-            let c = live.cut(polygon)?;
-            polygons += 1;
-            frontier_s += c.seconds;
-            tets_cut += c.stats.tets_cut;
+        let mut cut = |splits: Vec<Vec<CutPolygon>>| -> Result<(), Box<dyn std::error::Error>> {
+            for c in live.cut_sweep(&splits)? {
+                polygons += 1;
+                frontier_s += c.seconds;
+                tets_cut += c.stats.tets_cut;
+            }
             Ok(())
         };
         incision
-            .step(to, &mut cut)
+            .step_sweep(to, &mut cut)
             .map_err(|e| series.failed(k, &e))?;
         if k + 1 == blades.len() {
             incision
-                .catch_up(&mut cut)
+                .catch_up_sweep(&mut cut)
                 .map_err(|e| series.failed(k, &e))?;
         }
         series.write(k, live.mesh())?;
@@ -489,6 +492,7 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
                 "seconds_pending": r.seconds,
                 "fragments": r.fragments,
                 "remeshed": r.remeshed,
+                "other_splits": r.other_splits,
                 "folded": r.folded,
                 "cuts": r.cuts.iter().map(|s| s.to_json()).collect::<Vec<_>>(),
                 "components": live.mt().nb_components(),
@@ -501,10 +505,13 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
                 frontier_s * 1e3,
                 r.fragments,
                 r.seconds,
-                if r.remeshed {
-                    ", current mesh replaced by the model's"
-                } else {
-                    ""
+                match (r.remeshed, r.other_splits) {
+                    (true, 0) => ", current mesh replaced by the model's",
+                    (true, _) => {
+                        ", cut as another split of the sweep, current mesh replaced by the \
+                         model's"
+                    }
+                    _ => "",
                 },
                 live.mt().nb_components()
             );
