@@ -254,7 +254,7 @@ fn a_refused_split_of_a_sweep_is_cut_as_another() {
 /// model refuses some of the steps continuing the last at that angle; with
 /// `--skip-refused` each is cut again from a tenth of the way into it, as a new crack
 /// (`gap_steps`, and `gap` 0.1 in the step), leaving a bridge that wide rather than the
-/// whole step uncut, the model valid after every step.
+/// whole step uncut, the model valid after every step; time-critical too.
 #[test]
 fn skip_refused_cuts_a_refused_step_again_past_a_gap() {
     let dir = scratch("cli_scalpel_gap");
@@ -282,6 +282,23 @@ fn skip_refused_cuts_a_refused_step_again_past_a_gap() {
     }
     assert!(Mt::load(&saved).expect("saved").validate().is_valid());
     read_valid(&out.join("step-0017.vtu"));
+    // Time-critical: a step the model refuses whole is cut again from a tenth of the way,
+    // frontier first and on the model.
+    let live = dir.join("live");
+    let mut args = scalpel_args(&model, &path, &live, &saved, &["--time-critical"]);
+    args.extend(["--skip-refused", "--json"]);
+    let j = json(&args);
+    let gaps = j["gap_steps"].as_array().expect("gap_steps");
+    assert!(!gaps.is_empty(), "no step cut again past a gap: {j}");
+    let steps = j["steps"].as_array().expect("steps");
+    for k in gaps {
+        let step = &steps[k.as_u64().expect("a step") as usize - 1];
+        assert_eq!(step["gap"].as_f64(), Some(0.1), "{step}");
+        assert!(step["refused"].is_string(), "{step}");
+        assert!(step["current_tets_cut"].as_u64() > Some(0), "{step}");
+    }
+    assert!(Mt::load(&saved).expect("saved").validate().is_valid());
+    read_valid(&live.join("step-0017.vtu"));
     std::fs::remove_dir_all(&dir).ok();
 }
 

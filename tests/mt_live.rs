@@ -482,6 +482,11 @@ fn a_sweep_the_mt_refuses_is_taken_as_another_split() {
     let path: Vec<_> = (0..=20).map(|k| blades::tilting_in(&b, k, 20)).collect();
     let mut direct = Scalpel::new(mt_common::built("fandisk").1.clone(), path[0]).unwrap();
     let mut incision = Incision::new(path[0], 0.0).expect("incision");
+    // No split, or an empty first one, cuts nothing.
+    let some = scalpel_sweep(path[0], path[1], SWEEP_PLANARITY).expect("sweep");
+    assert!(l.cut_sweep(&[]).expect("no split").is_empty());
+    assert!(l.cut_sweep(&[vec![], some]).expect("empty").is_empty());
+    assert_eq!(l.pending_cuts(), 0);
     let mut other = Vec::new();
     for (k, &to) in path.iter().enumerate().skip(1) {
         let case = format!("fandisk step {k}");

@@ -519,7 +519,9 @@ impl LiveMt {
     /// (a polygon the current mesh refuses) the polygons before it stay cut and queued,
     /// as with `cut`.
     pub fn cut_sweep(&mut self, splits: &[Vec<CutPolygon>]) -> Result<Vec<LiveCut>, LiveError> {
-        let Some(first) = splits.first() else {
+        // No split, or a first one of no polygon: nothing to cut (other empty splits are
+        // not tried either).
+        let Some(first) = splits.first().filter(|f| !f.is_empty()) else {
             return Ok(Vec::new());
         };
         let queued = self.pending.len();
@@ -527,10 +529,15 @@ impl LiveMt {
             .iter()
             .map(|p| self.cut(p))
             .collect::<Result<Vec<_>, _>>()?;
-        if !self.deformed && first.len() + splits.len() > 2 {
+        let alternatives: Vec<Vec<CutPolygon>> = splits[1..]
+            .iter()
+            .filter(|s| !s.is_empty())
+            .cloned()
+            .collect();
+        if !self.deformed && (first.len() > 1 || !alternatives.is_empty()) {
             let head = &mut self.pending[queued];
             head.group = first.len();
-            head.alternatives = splits[1..].to_vec();
+            head.alternatives = alternatives;
         }
         Ok(cuts)
     }

@@ -30,10 +30,13 @@
 //! that wide in the incision, and when that is refused too the step is skipped: the model
 //! stays as it was, the step's mesh is written (unchanged) so the series keeps one mesh
 //! per time step, and the blade moves on without cutting ([`Scalpel::skip_to`]: the next
-//! step begins a crack where the blade is). Time-critical, a refused cut is dropped from
-//! the model and from the current mesh, which is extracted again
-//! ([`LiveMt::process_pending`]), its area left uncut (not cut again from a tenth of the
-//! way: the current mesh was cut first). The summary lists the refused steps (a warning
+//! step begins a crack where the blade is). Time-critical, a sweep none of whose splits
+//! the model takes is dropped from the model (the triangle before the refused one kept)
+//! and from the current mesh, which is extracted again ([`LiveMt::process_pending`]);
+//! when nothing of the step was kept, a new crack is then begun a tenth of the way into
+//! it, cut frontier first and on the model as any step (`gap` 0.1 when taken), else its
+//! area is left uncut (where the first triangle was kept, a new crack from a tenth of the
+//! way would cross its crack). The summary lists the refused steps (a warning
 //! on stderr, `refused_steps` in `--json`). A step that leaves an invalid model or mesh
 //! still stops the run.
 //!
@@ -434,41 +437,75 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
     series.write(0, live.mesh())?;
     let start = Instant::now();
     let mut steps: Vec<Value> = Vec::new();
-    let mut refused_steps: Vec<usize> = Vec::new();
+    let (mut refused_steps, mut gap_steps) = (Vec::new(), Vec::new());
     for (k, &to) in blades.iter().enumerate().skip(1) {
-        let (mut polygons, mut frontier_s, mut tets_cut) = (0, 0.0, 0);
-        let mut cut = |splits: Vec<Vec<CutPolygon>>| -> Result<(), Box<dyn std::error::Error>> {
-            for c in live.cut_sweep(&splits)? {
-                polygons += 1;
-                frontier_s += c.seconds;
-                tets_cut += c.stats.tets_cut;
-            }
-            Ok(())
-        };
+        let mut counts = Frontier::default();
+        let end = incision.end();
         incision
-            .step_sweep(to, &mut cut)
+            .step_sweep(to, frontier(&mut live, &mut counts))
             .map_err(|e| series.failed(k, &e))?;
         if k + 1 == blades.len() {
             incision
-                .catch_up_sweep(&mut cut)
+                .catch_up_sweep(frontier(&mut live, &mut counts))
                 .map_err(|e| series.failed(k, &e))?;
         }
         series.write(k, live.mesh())?;
-        let r = live
+        let mut r = live
             .process_pending(PendingBudget::All)
             .map_err(|e| series.failed(k, &e))?;
         // The model refused a cut (and is as it was, the current mesh extracted again):
-        // stop as a step that broke it would, or go on with --skip-refused.
+        // stop as a step that broke it would, or go on with --skip-refused. When nothing
+        // of the step was kept, a new crack is begun a tenth of the way into it and cut
+        // from there, as `Scalpel::step_after_gap` does (the model and the current mesh
+        // are as before the step).
         let refusal = r.refused.first().map(|e| e.to_string());
+        let mut gap = None;
         if let Some(e) = &refusal {
             if !args.skip_refused {
                 return Err(series.failed(k, e).into());
             }
             refused_steps.push(k);
+            if r.cuts.is_empty() && !incision.is_behind() && end != incision.blade() {
+                let to = incision.blade();
+                let from = [
+                    end[0].lerp(to[0], RESTART_GAP),
+                    end[1].lerp(to[1], RESTART_GAP),
+                ];
+                incision.skip_to(from).map_err(|e| series.failed(k, &e))?;
+                incision
+                    .step_sweep(to, frontier(&mut live, &mut counts))
+                    .map_err(|e| series.failed(k, &e))?;
+                let again = live
+                    .process_pending(PendingBudget::All)
+                    .map_err(|e| series.failed(k, &e))?;
+                if again.refused.is_empty() {
+                    gap = Some(RESTART_GAP);
+                    gap_steps.push(k);
+                }
+                r.cuts.extend(again.cuts);
+                r.fragments += again.fragments;
+                r.remeshed |= again.remeshed;
+                r.folded += again.folded;
+                r.other_splits += again.other_splits;
+                r.seconds += again.seconds;
+            }
             if !args.json {
-                eprintln!("mtcut: warning: step {k}: the model's cut was refused and dropped: {e}");
+                match gap {
+                    Some(g) => eprintln!(
+                        "mtcut: warning: step {k}: the model's cut was refused; cut again from \
+                         {g} of the way into the step (the rest left uncut, a bridge): {e}"
+                    ),
+                    None => eprintln!(
+                        "mtcut: warning: step {k}: the model's cut was refused and dropped: {e}"
+                    ),
+                }
             }
         }
+        let Frontier {
+            polygons,
+            seconds: frontier_s,
+            tets_cut,
+        } = counts;
         let t_validate = Instant::now();
         let (model, mesh) = (
             live.mt().validate(),
@@ -485,6 +522,7 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
             steps.push(json!({
                 "step": k,
                 "refused": refusal,
+                "gap": gap,
                 "deferred": incision.is_behind(),
                 "polygons": polygons,
                 "current_tets_cut": tets_cut,
@@ -525,8 +563,31 @@ fn run_time_critical(args: &Args, mt: Mt, blades: &[Blade], options: &ExtractOpt
         &series,
         seconds,
         &refused_steps,
-        &[],
+        &gap_steps,
     )
+}
+
+/// What the frontier-first cuts of a time-critical step did.
+#[derive(Default)]
+struct Frontier {
+    polygons: usize,
+    seconds: f64,
+    tets_cut: usize,
+}
+
+/// The frontier-first cut of a sweep's splits ([`LiveMt::cut_sweep`]), counted in `counts`.
+fn frontier<'a>(
+    live: &'a mut LiveMt,
+    counts: &'a mut Frontier,
+) -> impl FnMut(Vec<Vec<CutPolygon>>) -> Result<(), Box<dyn std::error::Error>> + 'a {
+    move |splits| {
+        for c in live.cut_sweep(&splits)? {
+            counts.polygons += 1;
+            counts.seconds += c.seconds;
+            counts.tets_cut += c.stats.tets_cut;
+        }
+        Ok(())
+    }
 }
 
 /// A scalpel through a mesh (not a model): each step cuts the mesh with the area the blade
