@@ -1062,7 +1062,7 @@ impl Drop for CutSession<'_> {
 /// and the point of one lip would lie inside a face of the other instead of on its corner.
 pub fn origin_positions(positions: &[DVec3], origins: &[VertexOrigin]) -> Vec<DVec3> {
     let mut out = OriginPositions::default();
-    out.compute(positions, origins);
+    out.compute(positions, origins, None);
     out.positions
 }
 
@@ -1076,33 +1076,73 @@ pub struct OriginPositions {
 }
 
 impl OriginPositions {
-    /// [`origin_positions`] of `origins` from `positions`.
-    pub fn compute(&mut self, positions: &[DVec3], origins: &[VertexOrigin]) -> &[DVec3] {
+    /// Room, its memory mapped, for placing `n` new vertices.
+    pub fn reserve(&mut self, n: usize) {
+        crate::mesh::reserve_mapped(&mut self.positions, n);
+    }
+
+    /// [`origin_positions`] of `origins` from `positions`. `twinned`, when known, tells per
+    /// vertex whether another vertex may lie at its position: an origin none of whose ends
+    /// is twinned shares its place with no other origin but its own twin (a cut point's
+    /// other copy: the same ends and parameter, so the same rounding), and is placed
+    /// without the table. A cut of a part of the mesh no earlier cut reached then hashes
+    /// nothing (a fresh fandisk-1m cutter's cut through the middle spent a tenth of its
+    /// main thread's time filling the table, most of it faulting the table's pages in).
+    pub fn compute(
+        &mut self,
+        positions: &[DVec3],
+        origins: &[VertexOrigin],
+        twinned: Option<&[bool]>,
+    ) -> &[DVec3] {
         let bits = |v: VertexId| positions[v.idx()].to_array().map(f64::to_bits);
+        let alone = |v: &VertexId| twinned.is_some_and(|t| !t[v.idx()]);
         let first = &mut self.first;
         first.clear();
-        first.reserve(origins.len());
+        if twinned.is_none() {
+            first.reserve(origins.len());
+        }
         self.positions.clear();
         // Edges and faces keyed apart: an edge's third corner is a value no finite
         // coordinate has.
         self.positions.extend(origins.iter().map(|o| {
             let p = origin_position(positions, o);
             let key = match *o {
-                VertexOrigin::Edge { a, b, .. } => {
+                VertexOrigin::Edge { a, b, .. } if !(alone(&a) && alone(&b)) => {
                     let mut k = [bits(a), bits(b)];
                     k.sort_unstable();
                     [k[0], k[1], [u64::MAX; 3]]
                 }
-                VertexOrigin::Face { v, .. } => {
+                VertexOrigin::Face { v, .. } if !v.iter().all(alone) => {
                     let mut k = v.map(bits);
                     k.sort_unstable();
                     k
                 }
-                VertexOrigin::Copy { .. } => return p,
+                _ => return p,
             };
             *first.entry(key).or_insert(p)
         }));
         &self.positions
+    }
+}
+
+/// Marks, in `twinned` (one flag per vertex, extended here), which of the vertices a cut
+/// added may share their position with another vertex, and the vertices it copied: for
+/// [`OriginPositions::compute`], so erring on the side of `true` only costs hashing.
+/// `origins` are those of the vertices numbered from `twinned.len()`. Cut points come in
+/// coincident pairs; a copy coincides with its original; a face point is placed through
+/// the table, possibly onto another, when a corner of its face is twinned.
+pub fn extend_twinned(twinned: &mut Vec<bool>, origins: &[VertexOrigin]) {
+    for o in origins {
+        if let VertexOrigin::Copy { of } = *o {
+            twinned[of.idx()] = true;
+        }
+    }
+    for o in origins {
+        let twin = match *o {
+            VertexOrigin::Face { v, .. } => v.iter().any(|x| twinned[x.idx()]),
+            _ => true,
+        };
+        twinned.push(twin);
     }
 }
 
@@ -1126,6 +1166,77 @@ fn origin_position(positions: &[DVec3], origin: &VertexOrigin) -> DVec3 {
 mod tests {
     use super::*;
     use crate::geom::Aabb;
+
+    /// The two lips of a crack, each cut along its copy of one edge: vertices 2 and 3 are
+    /// the copies of 1 and 0, so the lips' edges run in opposite directions and their cut
+    /// points, computed apart, differ by a rounding. Known as twinned, the ends send both
+    /// through the table (one position); an edge without twinned ends is placed directly,
+    /// and its cut points' pair coincides all the same.
+    #[test]
+    fn cut_points_of_coincident_edges_share_a_position_when_their_ends_are_twinned() {
+        let (p, q) = (DVec3::new(0.1, 0.7, 0.3), DVec3::new(1.3, 0.2, 0.9));
+        let positions = [
+            p,
+            q,
+            q,
+            p,
+            DVec3::new(2.0, 2.0, 2.0),
+            DVec3::new(0.5, 1.5, 2.5),
+        ];
+        let edge = |a: u32, b: u32, t: f64, positive: bool| VertexOrigin::Edge {
+            a: VertexId(a),
+            b: VertexId(b),
+            t,
+            positive,
+        };
+        let t = 0.3;
+        let origins = [
+            edge(0, 1, t, true),
+            edge(0, 1, t, false),
+            edge(2, 3, 1.0 - t, true),
+            edge(4, 5, 0.6, true),
+            edge(4, 5, 0.6, false),
+        ];
+        let apart = [0, 2].map(|i| origin_position(&positions, &origins[i]));
+        assert_ne!(apart[0], apart[1], "the example needs a rounding apart");
+        let table = origin_positions(&positions, &origins);
+        assert_eq!(table[2], table[0]);
+        let mut placed = OriginPositions::default();
+        let twinned = [true, true, true, true, false, false];
+        assert_eq!(
+            placed.compute(&positions, &origins, Some(&twinned)),
+            &table[..]
+        );
+        // Not knowing the twins (all flags false) would place the lips apart.
+        let unknown = [false; 6];
+        assert_ne!(
+            placed.compute(&positions, &origins, Some(&unknown))[2],
+            table[0]
+        );
+
+        // Extending the flags: cut points and copies are twinned, with the copies'
+        // originals; a face point only where a corner of its face is.
+        let mut flags = vec![false; 5];
+        extend_twinned(
+            &mut flags,
+            &[
+                edge(0, 4, 0.5, true),
+                VertexOrigin::Face {
+                    v: [VertexId(0), VertexId(3), VertexId(4)],
+                    w: [0.2, 0.3, 0.5],
+                },
+                VertexOrigin::Copy { of: VertexId(1) },
+                VertexOrigin::Face {
+                    v: [VertexId(0), VertexId(1), VertexId(4)],
+                    w: [0.2, 0.3, 0.5],
+                },
+            ],
+        );
+        assert_eq!(
+            flags,
+            [false, true, false, false, false, true, false, true, true]
+        );
+    }
 
     /// Glued vertices take the state of their projection onto the plane (on the cut inside
     /// C, `OUT` outside), on either side and through the tet classification's fast path;

@@ -5,7 +5,7 @@ use super::bielser::Bielser17Nodes;
 use super::bvh::{Candidates, QueryBuffers, QueryOptions, TetBvh};
 use super::classify::{
     CrackTips, CutScratch, CutSession, NONE, OriginPositions, StateCache, TetClass, VertexOrigin,
-    mark_glued,
+    extend_twinned, mark_glued,
 };
 use super::components::Components;
 use super::options::{CutError, CutOptions, Scheme};
@@ -65,6 +65,11 @@ pub struct Cutter {
     /// position when the cutter was made, kept up to date by each cut. `None` for an MT
     /// frontier, ordered by id as the MT cut orders it.
     roots: Option<Vec<u32>>,
+    /// Per vertex, whether another vertex may lie at its position (bit for bit), for
+    /// placing new vertices ([`OriginPositions::compute`]): known for a plain mesh from
+    /// its twin roots, kept up to date by each cut; `None` (not known: every new vertex is
+    /// placed through the table) for an MT frontier, and once positions are set.
+    twinned: Option<Vec<bool>>,
     bvh: TetBvh,
     scratch: CutScratch,
     state_cache: StateCache,
@@ -148,6 +153,13 @@ impl CutBuffers {
         reserve_mapped(&mut self.split_at, splits);
         reserve_mapped(&mut self.children, splits + splits / 2);
         reserve_mapped(&mut self.appended_parents, 4 * splits);
+        // Cuts through the shared meshes put each candidate in the stars of 1.5 snapped
+        // vertices, one snapped vertex per 13–16 candidates, and 1.03 new points per split
+        // tet: room for a little more.
+        self.star.reserve(candidates);
+        reserve_mapped(&mut self.snapped, candidates / 8);
+        reserve_mapped(&mut self.examine, candidates / 8);
+        self.new_positions.reserve(splits + splits / 2);
     }
 
     /// A cut through a mesh of `n` tets meets about `n^(2/3)` of them (a plane section of
@@ -266,6 +278,15 @@ impl StarIndex {
         }
     }
 
+    /// Room, its memory mapped, for the stars of about `candidates` candidates.
+    fn reserve(&mut self, candidates: usize) {
+        use crate::mesh::reserve_mapped;
+        reserve_mapped(&mut self.found, 2 * candidates);
+        reserve_mapped(&mut self.at, 2 * candidates);
+        reserve_mapped(&mut self.vertices, candidates / 8);
+        reserve_mapped(&mut self.start, candidates / 8 + 1);
+    }
+
     /// The (candidate, local index) pairs of snapped vertex `v`.
     fn run(&self, v: VertexId) -> &[(u32, u8)] {
         match self.vertices.binary_search(&v) {
@@ -345,6 +366,16 @@ impl Cutter {
         let start = Instant::now();
         let bvh = TetBvh::build(mesh.positions(), &scales, mesh.tets());
         let roots = twin_order.then(|| twin_roots(mesh.positions()));
+        let twinned = roots.as_deref().map(|roots| {
+            let mut twinned = vec![false; roots.len()];
+            for (v, &r) in roots.iter().enumerate() {
+                if r as usize != v {
+                    twinned[v] = true;
+                    twinned[r as usize] = true;
+                }
+            }
+            twinned
+        });
         let valence = if options.continue_cracks {
             Vec::new()
         } else {
@@ -369,6 +400,7 @@ impl Cutter {
             mesh,
             scales,
             roots,
+            twinned,
             bvh,
             scratch: CutScratch::new(),
             state_cache: StateCache::default(),
@@ -446,6 +478,8 @@ impl Cutter {
         }
         self.mesh.positions_mut().copy_from_slice(positions);
         self.bvh.refit(self.mesh.positions(), self.mesh.tets());
+        // Any two vertices may have been moved onto one another.
+        self.twinned = None;
         Ok(())
     }
 
@@ -462,6 +496,10 @@ impl Cutter {
         if let Some(roots) = self.roots.as_mut() {
             roots.reserve(vertices);
             touch_spare(roots);
+        }
+        if let Some(twinned) = self.twinned.as_mut() {
+            twinned.reserve(vertices);
+            touch_spare(twinned);
         }
         if !self.valence.is_empty() {
             self.valence.reserve(vertices);
@@ -935,7 +973,13 @@ impl Cutter {
         drop(session);
         // New vertices are combinations of older ones only: their positions (as rounded,
         // which is what the mesh will hold) can be computed before anything changes.
-        let new_positions = new_positions.compute(self.mesh.positions(), &origins);
+        let new_positions =
+            new_positions.compute(self.mesh.positions(), &origins, self.twinned.as_deref());
+        debug_assert_eq!(
+            new_positions,
+            super::classify::origin_positions(self.mesh.positions(), &origins),
+            "new vertices placed without the table where no end is twinned, as with it"
+        );
         times.classify += t.elapsed().as_secs_f64();
 
         // Every child positively oriented, exactly, at those positions: the tables make
@@ -1118,6 +1162,10 @@ impl Cutter {
         if let Some(roots) = self.roots.as_mut() {
             extend_twin_roots(roots, origins.iter().copied());
             debug_assert_eq!(roots.len(), self.mesh.nb_vertices());
+        }
+        if let Some(twinned) = self.twinned.as_mut() {
+            extend_twinned(twinned, &origins);
+            debug_assert_eq!(twinned.len(), self.mesh.nb_vertices());
         }
         debug_assert!(
             !keep_valences

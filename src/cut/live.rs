@@ -466,7 +466,7 @@ impl LiveMt {
         let added = if self.at_rest {
             &self.current.mesh().positions()[n..]
         } else {
-            self.new_rest.compute(&self.rest, &r.origins)
+            self.new_rest.compute(&self.rest, &r.origins, None)
         };
         debug_assert_eq!(n + added.len(), self.current.mesh().nb_vertices());
         debug_assert!(!self.at_rest || added == origin_positions(&self.rest, &r.origins));
