@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-step() { printf '\n==> %s\n' "$*"; }
+step() { printf '\n==> %s (%s)\n' "$*" "$(date +%T)"; }
 
 # System packages the tests use: VTK (C++ and Python) and TetGen for cross-checks and the
 # C/C++ examples, CMake for those examples, ParaView (pvbatch) under Xvfb for what a user
