@@ -19,8 +19,8 @@
 //! a fresh copy of the MT (copying is not timed).
 
 use mtcut::cut::{MtCutStats, MtCutter};
-use mtcut::geom::{CutPolygon, DVec3};
-use mtcut::mesh::TetMesh;
+use mtcut::geom::{CutPolygon, DVec3, Sign, orient3d};
+use mtcut::mesh::{TetId, TetMesh};
 use mtcut::mt::{BuildOptions, Mt};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -37,9 +37,32 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// The benchmark plane: through the centre of the bounding box, a fixed oblique normal.
+/// The benchmark plane, with a fixed oblique normal: through the centre of the bounding
+/// box where a tet holds it, else through the centroid of the tet nearest to it (the
+/// pinion's centre lies in its bore, where the two smallest squares met no tet).
 fn plane_of(mesh: &TetMesh) -> (DVec3, DVec3) {
-    (mesh.bbox().center(), DVec3::new(0.3, 0.5, 0.8).normalize())
+    let c = mesh.bbox().center();
+    let normal = DVec3::new(0.3, 0.5, 0.8).normalize();
+    let tets = (0..mesh.nb_tets()).map(|t| mesh.tet_positions(TetId::from_usize(t)));
+    let holds = |[a, b, d, e]: [DVec3; 4]| {
+        [
+            orient3d(c, b, d, e),
+            orient3d(a, c, d, e),
+            orient3d(a, b, c, e),
+            orient3d(a, b, d, c),
+        ]
+        .iter()
+        .all(|&s| s != Sign::Negative)
+    };
+    if tets.clone().any(holds) {
+        return (c, normal);
+    }
+    let centroid = |p: [DVec3; 4]| (p[0] + p[1] + p[2] + p[3]) * 0.25;
+    let nearest = tets
+        .map(centroid)
+        .min_by(|p, q| p.distance_squared(c).total_cmp(&q.distance_squared(c)))
+        .unwrap_or(c);
+    (nearest, normal)
 }
 
 fn square(origin: DVec3, normal: DVec3, r: f64) -> CutPolygon {
