@@ -1,8 +1,9 @@
 //! The C ABI of the time-critical cut (`mtcut_live_*`), called as C would call it: a bent
 //! fandisk cut frontier first, the queue processed by budget, model ids back on every
 //! vertex, resolution changes refused while work is pending, a cut the model refuses
-//! counted in the report, and bad arguments refused with a status and a message, outputs
-//! untouched.
+//! counted in the report, a scalpel's sweep the model refuses taken as another split of
+//! it, or, refused whole, swept again past a gap, and bad arguments refused with a status
+//! and a message, outputs untouched.
 
 mod blades;
 mod common;
@@ -22,7 +23,12 @@ impl Drop for Live {
 
 /// A live fandisk at a middle resolution.
 fn live() -> Live {
-    let path = CString::new(common::data("fandisk.node").to_str().unwrap()).unwrap();
+    live_of("fandisk.node")
+}
+
+/// A live model of a shared mesh at a middle resolution.
+fn live_of(mesh: &str) -> Live {
+    let path = CString::new(common::data(mesh).to_str().unwrap()).unwrap();
     unsafe {
         let mut mesh = ptr::null_mut();
         ok(mtcut_mesh_read(path.as_ptr(), &mut mesh));
@@ -284,6 +290,67 @@ fn a_sweep_the_model_refuses_is_cut_as_another_split() {
     };
     ok(unsafe { mtcut_live_process_pending(l.0, 0, 0.0, &mut r) });
     assert_eq!((r.cuts_done, r.other_splits), (1, 777), "{r:?}");
+}
+
+#[test]
+fn a_sweep_refused_whole_is_cut_again_past_a_gap() {
+    // A shallow incision turning by 4° per step across liver (tests/cli_scalpel.rs): the
+    // model refuses some steps whole, every split of their sweeps (`refused`, no cut done),
+    // and the current mesh is extracted again without them. Swept again from a tenth of
+    // the way into the step, as a new crack (what `mtcut scalpel --time-critical
+    // --skip-refused` does), each is taken, leaving a bridge that wide uncut; the model
+    // and the current mesh valid after every step, every vertex named.
+    let l = live_of("liver.node");
+    let xyz = positions(&l);
+    let corners: Vec<mtcut::geom::DVec3> = xyz
+        .chunks(3)
+        .map(|p| mtcut::geom::DVec3::new(p[0], p[1], p[2]))
+        .collect();
+    let b = mtcut::geom::Aabb::from_points(corners.iter());
+    let path = blades::shallow_turning(&b, 4.0);
+    let flat = |[p, q]: mtcut::cut::Blade| [p.x, p.y, p.z, q.x, q.y, q.z];
+    let sweep = |from: mtcut::cut::Blade, to: mtcut::cut::Blade| {
+        ok(unsafe {
+            mtcut_live_scalpel_sweep(l.0, flat(from).as_ptr(), flat(to).as_ptr(), ptr::null_mut())
+        });
+        let mut r = mtcut_pending_report {
+            struct_size: size_of::<mtcut_pending_report>(),
+            ..Default::default()
+        };
+        ok(unsafe { mtcut_live_process_pending(l.0, 0, 0.0, &mut r) });
+        assert_eq!(r.cuts_left, 0, "{r:?}");
+        r
+    };
+    let mut again = Vec::new();
+    for (k, w) in path.windows(2).enumerate() {
+        let r = sweep(w[0], w[1]);
+        if r.refused > 0 && r.cuts_done == 0 {
+            assert_eq!(r.remeshed, 1, "step {k}: {r:?}");
+            let gap = [0, 1].map(|i| w[0][i].lerp(w[1][i], 0.1));
+            let r = sweep(gap, w[1]);
+            assert_eq!(r.refused, 0, "step {k} past the gap: {r:?}");
+            assert!(r.cuts_done > 0, "step {k} past the gap: {r:?}");
+            again.push(k);
+        }
+        assert!(valid_mesh(&l), "step {k}");
+        assert!(!ids(&l).contains(&u32::MAX), "step {k}: a vertex not named");
+        unsafe {
+            let mut mt = ptr::null_mut();
+            ok(mtcut_live_mt(l.0, &mut mt));
+            let mut valid = false;
+            ok(mtcut_mt_validate(
+                mt,
+                &mut valid,
+                ptr::null_mut(),
+                0,
+                ptr::null_mut(),
+            ));
+            mtcut_mt_free(mt);
+            assert!(valid, "step {k}: the model");
+        }
+    }
+    // When the model takes every step of this incision, this test needs another path.
+    assert!(!again.is_empty(), "no step refused whole");
 }
 
 #[test]

@@ -316,10 +316,15 @@ pub unsafe extern "C" fn mtcut_live_cut(
 /// another split of the same sweep (the other diagonal's triangles, or either pair in the
 /// other order) and replaces the current mesh by the model's extraction
 /// (`other_splits` in its report); calling `mtcut_live_cut` once per polygon gives up
-/// that step instead (`refused`). `stats_or_null` receives the current mesh's cuts added up
-/// (as `mtcut_live_cut` gives one's). A blade that does not move, a sweep folding over
-/// itself or a coordinate that is not finite gives `MTCUT_STATUS_INVALID_ARGUMENT`,
-/// nothing changed.
+/// that step instead (`refused`). A step whose every split the model refuses (`refused`,
+/// no cut done) is missing from the model and, extracted again, from the current mesh: a
+/// host may sweep it again from a fraction of the way into it (`start_xyz` moved a tenth
+/// of the way to `end_xyz`), a new crack leaving that bridge uncut, as `mtcut scalpel
+/// --time-critical --skip-refused` does (on a shallow incision turning by 4 degrees a step
+/// across liver, every step refused whole is taken so). `stats_or_null` receives the
+/// current mesh's cuts added up (as `mtcut_live_cut` gives one's). A blade that does not
+/// move, a sweep folding over itself or a coordinate that is not finite gives
+/// `MTCUT_STATUS_INVALID_ARGUMENT`, nothing changed.
 ///
 /// # Safety
 /// `live` must be a live handle used by no other thread; `start_xyz` and `end_xyz`
