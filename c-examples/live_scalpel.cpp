@@ -2,9 +2,9 @@
 // surgery simulation would drive it. The Multi-Tessellation of the mesh given is built and
 // a live model made at a middle resolution; the body is bent (the simulation's deformed
 // positions, set with mtcut_live_set_positions) and a scalpel crosses it in 12 time
-// steps. Each step cuts the polygons the blade swept (mtcut_scalpel_sweep_polygons) from
-// the current mesh first, where the body lies now (mtcut_live_cut), and queues the cut of
-// the model; every other step goes on with that queue within a budget
+// steps. Each step cuts what the blade swept from the current mesh first, where the body
+// lies now, and queues the cut of the model (mtcut_live_scalpel_sweep, given the blade at
+// the step's start and end); every other step goes on with that queue within a budget
 // (mtcut_live_process_pending); what is left is processed at the end. The current mesh
 // must be valid after every step, every queued cut taken, and the body in two pieces at
 // the end, in the current mesh and in the model. Writes live-scalpel.vtu (the last
@@ -100,20 +100,11 @@ int main(int argc, char **argv) {
     double slowest_ms = 0.0;
     for (int s = 1; s <= steps; s++) {
       const std::vector<double> from = blade(lo, hi, s - 1, steps), to = blade(lo, hi, s, steps);
-      double polygons[3 * MTCUT_SWEEP_MAX_POINTS];
-      size_t counts[2], n_polygons = 0;
-      check(mtcut_scalpel_sweep_polygons(from.data(), to.data(), polygons, counts, &n_polygons),
-            "sweep");
-      size_t cut = 0, at = 0;
+      mtcut_cut_stats stats;
+      std::memset(&stats, 0, sizeof stats);
+      stats.struct_size = sizeof stats;
       const auto start = std::chrono::steady_clock::now();
-      for (size_t p = 0; p < n_polygons; p++) {
-        mtcut_cut_stats stats;
-        std::memset(&stats, 0, sizeof stats);
-        stats.struct_size = sizeof stats;
-        check(mtcut_live_cut(live.get(), &polygons[3 * at], counts[p], &stats), "frontier cut");
-        cut += stats.tets_cut;
-        at += counts[p];
-      }
+      check(mtcut_live_scalpel_sweep(live.get(), from.data(), to.data(), &stats), "frontier cut");
       const double ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count();
@@ -126,9 +117,8 @@ int main(int argc, char **argv) {
         fragments += report.fragments;
         verify(report.cuts_done == 1, "the budget starts one cut");
       }
-      std::printf("step %2d: %zu polygon(s), %4zu current tets cut in %.3f ms; %zu model "
-                  "cut(s) queued\n",
-                  s, n_polygons, cut, ms, mtcut_live_pending_cuts(live.get()));
+      std::printf("step %2d: %4zu current tets cut in %.3f ms; %zu model cut(s) queued\n", s,
+                  stats.tets_cut, ms, mtcut_live_pending_cuts(live.get()));
       mtcut_mesh *raw = nullptr;
       check(mtcut_live_mesh(live.get(), &raw), "current mesh");
       Mesh current(raw);
