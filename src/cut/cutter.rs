@@ -520,6 +520,11 @@ impl Cutter {
                 self.roots
                     .as_ref()
                     .map_or(usize::MAX, |r| r.capacity() - r.len()),
+            )
+            .min(
+                self.twinned
+                    .as_ref()
+                    .map_or(usize::MAX, |t| t.capacity() - t.len()),
             );
         if !self.valence.is_empty() {
             vertices = vertices.min(self.valence.capacity() - self.valence.len());
